@@ -1,0 +1,158 @@
+"""launchkit's Python API: find, check, describe and run launch files (the CLI calls these)."""
+
+from __future__ import annotations
+
+import os
+import sys
+from collections.abc import Mapping
+from pathlib import Path
+from typing import IO
+
+from launchkit.checks import CheckedTree, check_tree, undeclared_arguments
+from launchkit.description.context import LaunchContext, Runtime
+from launchkit.errors import PackageNotFoundError
+from launchkit.frontend.xml_parser import XmlParser
+from launchkit.packages import PackageIndex
+
+
+def resolve_launch_file(target: str, filename: str | None, packages: PackageIndex) -> Path:
+    """``launchkit run PKG FILE`` or ``launchkit run FILE``: the launch file's path.
+
+    A bare FILE that is not in the current directory is looked up in every known package's
+    launch folders; several matches are an error listing them.
+    """
+    if filename is not None:
+        return packages.launch_file(target, filename)
+    path = Path(target).expanduser()
+    if path.is_file():
+        return path.resolve()
+    if os.sep in target:
+        raise PackageNotFoundError(f"launch file '{target}' does not exist", expected="a file")
+    matches = packages.find_launch_file(target)
+    if len(matches) == 1:
+        return matches[0]
+    if not matches:
+        raise PackageNotFoundError(
+            f"launch file '{target}' not found",
+            expected="a file in the current directory or in a package's launch folders",
+            hint="searched " + packages.describe_search_path(),
+        )
+    listing = ", ".join(str(m) for m in matches)
+    raise PackageNotFoundError(
+        f"launch file '{target}' is in several packages: {listing}",
+        expected="PKG FILE to say which",
+    )
+
+
+def check(
+    path: Path,
+    arguments: Mapping[str, str] | None = None,
+    *,
+    packages: PackageIndex | None = None,
+    parser: XmlParser | None = None,
+) -> CheckedTree:
+    """Parse and check ``path`` (and its static includes) without running anything."""
+    return check_tree(path, arguments or {}, parser or XmlParser(), packages or PackageIndex())
+
+
+def _context(
+    runtime: Runtime,
+    arguments: Mapping[str, str],
+    packages: PackageIndex,
+    parser: XmlParser,
+    log_dir: Path | None,
+) -> LaunchContext:
+    def run_dir() -> Path:
+        nonlocal log_dir
+        if log_dir is None:
+            from launchkit.runtime.logdir import create_run_dir
+
+            log_dir = create_run_dir(os.environ)
+        return log_dir
+
+    return LaunchContext(
+        packages=packages,
+        runtime=runtime,
+        loader=parser.load,
+        environment=dict(os.environ),
+        log_dir=run_dir,
+        configurations=dict(arguments),
+    )
+
+
+def describe(path: Path, arguments: Mapping[str, str] | None = None) -> str:
+    """What running ``path`` would do (processes with command lines, env changes, timers)."""
+    from launchkit.runtime.recorder import Recorder, render
+
+    arguments = arguments or {}
+    packages, parser = PackageIndex(), XmlParser()
+    tree = check_tree(path, arguments, parser, packages)
+    recorder = Recorder()
+    context = _context(recorder, arguments, packages, parser, None)
+    recorder.context = context
+    try:
+        with context.in_file(tree.top.path):
+            for action in tree.top.actions:
+                action.visit(context)
+        return render(recorder.items)
+    finally:
+        context.cleanup()
+
+
+def show_arguments(path: Path) -> str:
+    """The arguments ``path`` declares, with defaults, descriptions and choices."""
+    description = check(path).top
+    lines = ["Arguments (pass arguments as '<name>:=<value>'):"]
+    declared = description.declared_arguments()
+    if not declared:
+        lines.append("\n  No arguments.")
+    for arg in declared:
+        lines.append(f"\n    '{arg.name}':")
+        lines.append(f"        {arg.description or 'no description given'}")
+        if arg.choices:
+            lines.append("        Valid choices are: " + ", ".join(repr(c) for c in arg.choices))
+        default = arg.describe_default()
+        lines.append(
+            f"        (default: {default!r})" if default is not None else "        (required)"
+        )
+        if arg.condition is not None:
+            lines.append("        (declared conditionally)")
+    return "\n".join(lines)
+
+
+def run(
+    path: Path,
+    arguments: Mapping[str, str] | None = None,
+    *,
+    stream: IO[str] | None = None,
+    router: str | None = None,
+) -> int:
+    """Run ``path`` until everything it started has stopped; the exit status.
+
+    User mistakes found before anything starts raise :class:`launchkit.errors.UserError`.
+    """
+    from launchkit.runtime.logdir import create_run_dir
+    from launchkit.runtime.network import NodeNetwork
+    from launchkit.runtime.output import Output
+    from launchkit.runtime.supervisor import Supervisor
+
+    arguments = dict(arguments or {})
+    packages, parser = PackageIndex(), XmlParser()
+    tree = check_tree(path, arguments, parser, packages)
+    output = Output(stream or sys.stdout)
+    run_dir = create_run_dir(os.environ)
+    output.open_logs(run_dir)
+    output.launch_line("INFO", "launch", f"All log files can be found below {run_dir}")
+    for name in undeclared_arguments(tree, arguments):
+        output.launch_line(
+            "WARNING",
+            "launch",
+            f"argument '{name}' is not declared or used by "
+            f"{path.name} (or the files it includes statically)",
+        )
+    supervisor = Supervisor(output, network=NodeNetwork(router))
+    context = _context(supervisor, arguments, packages, parser, run_dir)
+    try:
+        return supervisor.run(tree.top, context)
+    finally:
+        output.close()

@@ -1,0 +1,163 @@
+"""Static checks: everything that can be known wrong before a single process starts.
+
+Parsing already rejects unknown tags, attributes and substitutions, malformed substitutions and
+bad literal values. On top of that this module loads every ``<include>`` whose path is known
+without running anything, and checks the command-line arguments against the top file's
+``<arg>`` declarations (required ones present, values among the choices).
+"""
+
+from __future__ import annotations
+
+from collections.abc import Mapping
+from pathlib import Path
+
+from launchkit.description.actions import DeclareArgument, Include
+from launchkit.description.launch_description import LaunchDescription, walk
+from launchkit.description.substitutions import (
+    Dirname,
+    Filename,
+    FindPkgPrefix,
+    FindPkgShare,
+    Substitution,
+    Text,
+    Var,
+)
+from launchkit.description.substitutions.base import literal
+from launchkit.errors import LaunchArgumentError, PackageNotFoundError
+from launchkit.frontend.xml_parser import XmlParser
+from launchkit.packages import PackageIndex
+
+
+class CheckedTree:
+    """The top description and every statically included one."""
+
+    def __init__(self, top: LaunchDescription) -> None:
+        self.top = top
+        self.files: dict[Path, LaunchDescription] = {top.path: top}
+
+    @property
+    def entity_count(self) -> int:
+        """How many actions the checked files hold."""
+        return sum(len(walk(d.actions)) for d in self.files.values())
+
+
+def parse_launch_arguments(items: list[str]) -> dict[str, str]:
+    """``name:=value`` items into a dict (last wins, values keep spaces)."""
+    values: dict[str, str] = {}
+    for item in items:
+        name, sep, value = item.partition(":=")
+        if not sep or not name or not name.strip():
+            raise LaunchArgumentError(f"malformed launch argument {item!r}", expected="NAME:=VALUE")
+        values[name] = value
+    return values
+
+
+def check_tree(
+    path: Path,
+    arguments: Mapping[str, str],
+    parser: XmlParser,
+    packages: PackageIndex,
+) -> CheckedTree:
+    """Parse ``path`` and its static includes and check ``arguments``; raise on the first error."""
+    tree = CheckedTree(parser.load(path))
+    pending = [tree.top]
+    while pending:
+        description = pending.pop()
+        for action in walk(description.actions):
+            if not isinstance(action, Include):
+                continue
+            included = static_path(action, description.path, packages)
+            if included is None or included in tree.files or not included.is_file():
+                continue
+            child = parser.load(included, action.location)
+            tree.files[included] = child
+            pending.append(child)
+    check_arguments(tree.top, arguments)
+    return tree
+
+
+def static_path(include: Include, current: Path, packages: PackageIndex) -> Path | None:
+    """The included file when its path needs nothing but text, ``$(dirname)``, ``$(filename)``
+    and package lookups; None when it depends on the run."""
+    parts: list[str] = []
+    for part in include.file:
+        text = _static_text(part, current, packages)
+        if text is None:
+            return None
+        parts.append(text)
+    path = Path("".join(parts))
+    if not path.is_absolute() and not path.exists():
+        path = current.parent / path
+    return path.resolve()
+
+
+def _static_text(part: Substitution, current: Path, packages: PackageIndex) -> str | None:
+    if isinstance(part, Text):
+        return part.text
+    if isinstance(part, Dirname):
+        return str(current.parent)
+    if isinstance(part, Filename):
+        return str(current)
+    if isinstance(part, FindPkgShare | FindPkgPrefix):
+        name = literal(part.args[0])
+        if name is None:
+            return None
+        try:
+            found = packages.find(name)
+        except PackageNotFoundError:
+            return None  # reported when (and if) the include runs
+        return str(found.share if isinstance(part, FindPkgShare) else found.prefix)
+    return None
+
+
+def check_arguments(top: LaunchDescription, arguments: Mapping[str, str]) -> None:
+    """Required top-level arguments are given and given values are among the choices."""
+    for required in top.required_arguments():
+        if required.name not in arguments:
+            raise required.missing_error()
+    for declared in top.declared_arguments():
+        value = arguments.get(declared.name)
+        if value is not None:
+            declared.check_choice(value)
+        elif declared.default is not None and declared.condition is None:
+            default = literal(declared.default)
+            if default is not None:
+                declared.check_choice(default)
+
+
+def undeclared_arguments(tree: CheckedTree, arguments: Mapping[str, str]) -> list[str]:
+    """Command-line names no checked file declares or reads with a literal ``$(var NAME)``."""
+    known: set[str] = set()
+    for description in tree.files.values():
+        for action in walk(description.actions):
+            if isinstance(action, DeclareArgument):
+                known.add(action.name)
+            for value in vars(action).values():
+                known.update(_var_names(value))
+    return [name for name in arguments if name not in known and name not in _SPECIAL]
+
+
+_SPECIAL = {
+    "sigterm_timeout",
+    "sigkill_timeout",
+    "launch-prefix",
+    "launch-prefix-filter",
+    "emulate_tty",
+    "ros_namespace",
+}
+
+
+def _var_names(value: object) -> set[str]:
+    names: set[str] = set()
+    if isinstance(value, tuple | list):
+        for item in value:
+            names |= _var_names(item)
+    elif isinstance(value, Var):
+        name = literal(value.args[0])
+        if name is not None:
+            names.add(name)
+    elif hasattr(value, "args") and isinstance(value, Substitution):
+        names |= _var_names(getattr(value, "args", ()))
+    elif hasattr(value, "__dataclass_fields__"):
+        names |= _var_names(list(vars(value).values()))
+    return names

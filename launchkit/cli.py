@@ -1,0 +1,196 @@
+"""The ``launchkit`` command line: argument parsing only; the work is in :mod:`launchkit.api`.
+
+Exit status: 0 when all went well, 2 for a user mistake (reported as one
+``FILE:LINE:COL: error: ...`` line before anything starts), 1 for a failure while running
+(or the exit code of an ``on_exit="shutdown"`` process that failed).
+"""
+
+from __future__ import annotations
+
+import argparse
+import os
+import sys
+from pathlib import Path
+
+from launchkit.errors import LaunchkitError, UserError
+
+ROS_COMMANDS = ("topic", "node", "service", "param", "interface", "router")
+
+
+def _launch_parser(prog: str, description: str) -> argparse.ArgumentParser:
+    parser = argparse.ArgumentParser(prog=prog, description=description)
+    parser.add_argument(
+        "items",
+        nargs="+",
+        metavar="[PKG] FILE [name:=value ...]",
+        help="a launch file (a path, or a file name found in the packages' launch folders), "
+        "optionally preceded by its package, then launch arguments",
+    )
+    parser.add_argument("--debug", action="store_true", help="show tracebacks")
+    return parser
+
+
+def build_parser() -> argparse.ArgumentParser:
+    """The top-level parser (the ROS commands are parsed by ``launchkit.ros.cli``)."""
+    parser = argparse.ArgumentParser(
+        prog="launchkit", description="Run ROS 2 XML launch files without a ROS install."
+    )
+    commands = parser.add_subparsers(dest="command", metavar="COMMAND")
+    run = commands.add_parser(
+        "run",
+        help="run a launch file",
+        add_help=False,
+        parents=[_launch_parser("launchkit run", "Run a launch file.")],
+    )
+    run.add_argument(
+        "-p",
+        "--print",
+        action="store_true",
+        dest="print_description",
+        help="print what would run (command lines, env, timers) and run nothing",
+    )
+    run.add_argument(
+        "-s",
+        "--show-args",
+        action="store_true",
+        help="list the launch file's arguments and run nothing",
+    )
+    run.add_argument(
+        "-a",
+        "--show-all-subprocesses-output",
+        action="store_true",
+        help='show every process\'s output on the screen (output="both")',
+    )
+    run.add_argument("--router", help="Zenoh router endpoint to host or join (tcp/HOST:PORT)")
+    commands.add_parser(
+        "check",
+        help="validate a launch file and run nothing",
+        add_help=False,
+        parents=[_launch_parser("launchkit check", "Validate a launch file.")],
+    )
+    pkg = commands.add_parser("pkg", help="packages: list, prefix, executables")
+    pkg_commands = pkg.add_subparsers(dest="pkg_command", metavar="SUBCOMMAND", required=True)
+    pkg_commands.add_parser("list", help="list known packages")
+    prefix = pkg_commands.add_parser("prefix", help="a package's prefix")
+    prefix.add_argument("package")
+    share = pkg_commands.add_parser("share", help="a package's share directory")
+    share.add_argument("package")
+    executables = pkg_commands.add_parser("executables", help="a package's executables")
+    executables.add_argument("package")
+    exec_ = commands.add_parser("exec", help="run one executable of a package (like ros2 run)")
+    exec_.add_argument("package")
+    exec_.add_argument("executable")
+    exec_.add_argument("args", nargs=argparse.REMAINDER)
+    for name in ROS_COMMANDS:
+        commands.add_parser(
+            name, help=f"ROS {name} tools (see launchkit {name} --help)", add_help=False
+        )
+    return parser
+
+
+def main(argv: list[str] | None = None) -> int:
+    """Entry point of the ``launchkit`` console script."""
+    argv = list(sys.argv[1:] if argv is None else argv)
+    if argv and argv[0] in ROS_COMMANDS:
+        return _guarded(lambda: _ros_command(argv[0], argv[1:]), debug="--debug" in argv)
+    args = build_parser().parse_args(argv)
+    if args.command is None:
+        build_parser().print_help()
+        return 2
+    return _guarded(lambda: _dispatch(args), debug=getattr(args, "debug", False))
+
+
+def _guarded(action: object, debug: bool) -> int:
+    try:
+        return action()  # type: ignore[operator,no-any-return]
+    except LaunchkitError as error:
+        if debug:
+            import traceback
+
+            traceback.print_exc()
+        print(error.format(), file=sys.stderr)
+        return error.exit_status
+    except KeyboardInterrupt:
+        return 130
+
+
+def _ros_command(command: str, argv: list[str]) -> int:
+    from launchkit.ros.cli import main as ros_main  # type: ignore[import-not-found,unused-ignore]
+
+    return int(ros_main(command, argv))
+
+
+def _dispatch(args: argparse.Namespace) -> int:
+    from launchkit import api
+    from launchkit.checks import parse_launch_arguments
+    from launchkit.packages import PackageIndex
+
+    if args.command == "pkg":
+        return _pkg(args, PackageIndex())
+    if args.command == "exec":
+        return _exec(args, PackageIndex())
+    files = [i for i in args.items if ":=" not in i]
+    if files and Path(files[0]).is_file() and args.items[0] == files[0]:
+        files = files[:1]  # FILE then arguments: anything else is a malformed argument
+    elif len(files) > 2 or not files or any(":=" in i for i in args.items[: len(files)]):
+        raise UserError(
+            "launch file arguments are out of order",
+            expected="[PKG] FILE followed by name:=value items",
+        )
+    arguments = parse_launch_arguments(args.items[len(files) :])
+    packages = PackageIndex()
+    path = api.resolve_launch_file(files[0], files[1] if len(files) == 2 else None, packages)
+    if args.command == "check":
+        tree = api.check(path, arguments, packages=packages)
+        print(f"{path}: ok ({len(tree.files)} file(s), {tree.entity_count} entities)")
+        return 0
+    if args.show_args:
+        print(api.show_arguments(path))
+        return 0
+    if args.print_description:
+        print(api.describe(path, arguments))
+        return 0
+    if args.show_all_subprocesses_output:
+        os.environ["OVERRIDE_LAUNCH_PROCESS_OUTPUT"] = "both"
+    try:
+        return api.run(path, arguments, router=args.router)
+    except LaunchkitError as error:
+        error.exit_status = 2  # raised before anything started: the input is at fault
+        raise
+
+
+def _pkg(args: argparse.Namespace, packages: object) -> int:
+    from launchkit.packages import PackageIndex
+
+    assert isinstance(packages, PackageIndex)
+    if args.pkg_command == "list":
+        print("\n".join(packages.names()))
+    elif args.pkg_command == "prefix":
+        print(packages.prefix(args.package))
+    elif args.pkg_command == "share":
+        print(packages.share_dir(args.package))
+    else:
+        for name in packages.executables(args.package):
+            print(f"{args.package} {name}")
+    return 0
+
+
+def _exec(args: argparse.Namespace, packages: object) -> int:
+    from launchkit.packages import PackageIndex
+
+    assert isinstance(packages, PackageIndex)
+    argv = packages.executable(args.package, args.executable) + list(args.args)
+    os.environ.setdefault("PYTHONUNBUFFERED", "1")
+    sys.stdout.flush()
+    try:
+        os.execv(argv[0], argv)
+    except OSError as error:
+        raise UserError(f"cannot run '{argv[0]}': {error.strerror}") from None
+    return 0  # not reached
+
+
+__all__ = ["main"]
+
+
+if __name__ == "__main__":
+    raise SystemExit(main())

@@ -1,0 +1,1 @@
+"""What a launch file means, independent of its syntax: actions, substitutions, conditions."""

@@ -1,0 +1,190 @@
+"""``<executable>``: run a command as a supervised process (and the options ``<node>`` shares)."""
+
+from __future__ import annotations
+
+import os
+import re
+import shlex
+from dataclasses import dataclass, field, fields
+from typing import TYPE_CHECKING
+
+from launchkit.description.actions.base import Action, typed_bool, typed_float, typed_int
+from launchkit.description.command_line import split_command
+from launchkit.description.process import OUTPUT_MODES, ProcessSpec
+from launchkit.description.substitutions.base import Value, perform
+from launchkit.description.truth import condition_value
+from launchkit.errors import Location, RuntimeLaunchError
+
+if TYPE_CHECKING:
+    from launchkit.description.conditions import Condition
+    from launchkit.description.context import LaunchContext
+
+ON_EXIT = ("shutdown",)
+
+
+@dataclass
+class ProcessOptions:
+    """The attributes ``<executable>`` and ``<node>`` share, unevaluated (None = not given)."""
+
+    cwd: Value | None = None
+    name: Value | None = None
+    launch_prefix: Value | None = None
+    output: Value | None = None
+    shell: Value | None = None
+    emulate_tty: Value | None = None
+    sigterm_timeout: Value | None = None
+    sigkill_timeout: Value | None = None
+    respawn: Value | None = None
+    respawn_delay: Value | None = None
+    respawn_max_retries: Value | None = None
+    on_exit: Value | None = None
+    env: list[tuple[Value, Value]] = field(default_factory=list)
+
+    @staticmethod
+    def attribute_names() -> list[str]:
+        """XML attribute names of these options (``launch_prefix`` is ``launch-prefix``)."""
+        return [
+            f.name.replace("launch_prefix", "launch-prefix")
+            for f in fields(ProcessOptions)
+            if f.name != "env"
+        ]
+
+
+class ProcessBuilder:
+    """Evaluates :class:`ProcessOptions` in a context into the parts of a ProcessSpec."""
+
+    def __init__(self, options: ProcessOptions, context: LaunchContext, location: Location | None):
+        self.options = options
+        self.context = context
+        self.location = location
+
+    def text(self, value: Value | None, default: str | None = None) -> str | None:
+        """An optional attribute performed, or ``default``."""
+        return default if value is None else perform(value, self.context)
+
+    def number(self, value: Value | None, config: str, default: float, what: str) -> float:
+        """A float attribute, else the launch configuration ``config``, else ``default``."""
+        if value is None:
+            configured = self.context.configurations.get(config)
+            if configured is None:
+                return default
+            try:
+                return float(configured)
+            except ValueError:
+                raise RuntimeLaunchError(
+                    f"launch configuration '{config}' is {configured!r}",
+                    self.location,
+                    expected="a number",
+                ) from None
+        return typed_float(value, self.context, what, self.location)
+
+    def flag(self, value: Value | None, default: bool, what: str) -> bool:
+        """A boolean attribute, else ``default``."""
+        return default if value is None else typed_bool(value, self.context, what, self.location)
+
+    def launch_prefix(self, program: str) -> list[str]:
+        """The launch prefix words: the attribute, else the configuration (with its filter)."""
+        if self.options.launch_prefix is not None:
+            return shlex.split(perform(self.options.launch_prefix, self.context))
+        configured = self.context.configurations.get("launch-prefix", "")
+        if not configured:
+            return []
+        pattern = self.context.configurations.get("launch-prefix-filter")
+        if pattern and not re.search(pattern, os.path.basename(program)):
+            return []
+        return shlex.split(configured)
+
+    def build(
+        self, words: list[str], default_name: str, is_node: bool, prefixed: bool = False
+    ) -> ProcessSpec:
+        """The evaluated process: command, environment, output and lifecycle settings
+        (``prefixed``: the launch prefix is already in ``words``)."""
+        o, ctx = self.options, self.context
+        if not words:
+            raise RuntimeLaunchError("the command is empty", self.location, expected="a program")
+        cmd = words if prefixed else self.launch_prefix(words[0]) + words
+        env = dict(ctx.environment)
+        for name, value in o.env:
+            env[perform(name, ctx)] = perform(value, ctx)
+        env.setdefault("PYTHONUNBUFFERED", "1")
+        output = self._output()
+        emulate_default = condition_value(ctx.configurations.get("emulate_tty", "false")) or False
+        on_exit = self.text(o.on_exit)
+        if on_exit is not None and on_exit not in ON_EXIT:
+            raise RuntimeLaunchError(
+                f"on_exit is {on_exit!r}", self.location, expected='on_exit="shutdown"'
+            )
+        spec = ProcessSpec(
+            name=self.text(o.name) or os.path.basename(default_name),
+            cmd=cmd,
+            env=env,
+            cwd=self.text(o.cwd),
+            output=output,
+            emulate_tty=self.flag(o.emulate_tty, emulate_default, "emulate_tty"),
+            sigterm_timeout=self.number(
+                o.sigterm_timeout, "sigterm_timeout", 5.0, "sigterm_timeout"
+            ),
+            sigkill_timeout=self.number(
+                o.sigkill_timeout, "sigkill_timeout", 5.0, "sigkill_timeout"
+            ),
+            respawn=self.flag(o.respawn, False, "respawn"),
+            respawn_delay=self.number(o.respawn_delay, "", 0.0, "respawn_delay"),
+            respawn_max_retries=-1
+            if o.respawn_max_retries is None
+            else typed_int(o.respawn_max_retries, ctx, "respawn_max_retries", self.location),
+            on_exit_shutdown=on_exit == "shutdown",
+            is_node=is_node,
+            location=self.location,
+        )
+        spec.env_changes = _changes(ctx.initial_environment, env)
+        return spec
+
+    def _output(self) -> str:
+        override = self.context.initial_environment.get("OVERRIDE_LAUNCH_PROCESS_OUTPUT")
+        output = override or self.text(self.options.output, "log") or "log"
+        if output not in OUTPUT_MODES:
+            raise RuntimeLaunchError(
+                f"output is {output!r}", self.location, expected="one of " + ", ".join(OUTPUT_MODES)
+            )
+        return output
+
+
+def _changes(before: dict[str, str], after: dict[str, str]) -> dict[str, str | None]:
+    changed: dict[str, str | None] = {k: v for k, v in after.items() if before.get(k) != v}
+    changed.update({k: None for k in before if k not in after})
+    return changed
+
+
+class ExecuteProcess(Action):
+    """``<executable cmd="...">``: one supervised process."""
+
+    TAG = "executable"
+
+    def __init__(
+        self,
+        cmd: Value,
+        options: ProcessOptions,
+        location: Location | None = None,
+        condition: Condition | None = None,
+    ) -> None:
+        super().__init__(location, condition)
+        self.cmd = cmd
+        self.options = options
+
+    def evaluate(self, context: LaunchContext) -> ProcessSpec:
+        """The process this tag describes, in ``context``."""
+        builder = ProcessBuilder(self.options, context, self.location)
+        if builder.flag(self.options.shell, False, "shell"):
+            # The command text goes to the shell as written, quoting intact.
+            text = perform(self.cmd, context).strip()
+            words = split_command(self.cmd, context, self.location)
+            prefix = builder.launch_prefix(words[0] if words else "sh")
+            if prefix:
+                text = shlex.join(prefix) + " " + text
+            return builder.build(["/bin/sh", "-c", text], words[0] if words else "sh", False, True)
+        words = split_command(self.cmd, context, self.location)
+        return builder.build(words, words[0] if words else "", False)
+
+    def execute(self, context: LaunchContext) -> None:
+        """Hand the process to the runtime."""
+        context.runtime.start_process(self.evaluate(context))

@@ -1,0 +1,93 @@
+"""``<group>`` and ``<reset>``: scoping of launch configurations."""
+
+from __future__ import annotations
+
+from collections.abc import Sequence
+from dataclasses import dataclass
+from typing import TYPE_CHECKING
+
+from launchkit.description.actions.base import Action
+from launchkit.description.context import Scope
+from launchkit.description.substitutions.base import Value, perform
+from launchkit.errors import Location
+
+if TYPE_CHECKING:
+    from launchkit.description.conditions import Condition
+    from launchkit.description.context import LaunchContext
+
+
+@dataclass(frozen=True)
+class Keep:
+    """``<keep name value/>``: a configuration kept through a reset."""
+
+    name: Value
+    value: Value
+
+
+def _kept(keeps: Sequence[Keep], context: LaunchContext) -> dict[str, str]:
+    return {perform(k.name, context): perform(k.value, context) for k in keeps}
+
+
+class Group(Action):
+    """Run children in a pushed scope (``scoped``), optionally starting with nothing but
+    ``<keep>``s (``forwarding="false"``)."""
+
+    TAG = "group"
+
+    def __init__(
+        self,
+        actions: Sequence[Action],
+        scoped: bool = True,
+        forwarding: bool = True,
+        keeps: Sequence[Keep] = (),
+        location: Location | None = None,
+        condition: Condition | None = None,
+    ) -> None:
+        super().__init__(location, condition)
+        self.actions = list(actions)
+        self.scoped = scoped
+        self.forwarding = forwarding
+        self.keeps = list(keeps)
+
+    def children(self) -> Sequence[Action]:
+        """The grouped actions."""
+        return self.actions
+
+    def execute(self, context: LaunchContext) -> None:
+        """Run the children, in a new scope when ``scoped``."""
+        if not self.scoped:
+            self._run(context)
+            return
+        with context.scoped():
+            self._run(context)
+
+    def _run(self, context: LaunchContext) -> None:
+        if not self.forwarding:
+            reset(context, self.keeps)
+        for action in self.actions:
+            action.visit(context)
+
+
+def reset(context: LaunchContext, keeps: Sequence[Keep]) -> None:
+    """Clear configurations (and ROS globals) except the kept ones, evaluated first."""
+    kept = _kept(keeps, context)
+    context.scope = Scope(configurations=kept, environment=context.scope.environment)
+
+
+class Reset(Action):
+    """``<reset>``: clear every configuration except the ``<keep>``s."""
+
+    TAG = "reset"
+
+    def __init__(
+        self,
+        keeps: Sequence[Keep] = (),
+        location: Location | None = None,
+        condition: Condition | None = None,
+    ) -> None:
+        super().__init__(location, condition)
+        self.keeps = list(keeps)
+
+    def execute(self, context: LaunchContext) -> None:
+        """Reset the current scope."""
+        reset(context, self.keeps)

@@ -1,0 +1,71 @@
+"""``<include>``: run another launch file in the caller's scope (not scoped, as in ROS)."""
+
+from __future__ import annotations
+
+from collections.abc import Sequence
+from dataclasses import dataclass
+from pathlib import Path
+from typing import TYPE_CHECKING
+
+from launchkit.description.actions.base import Action
+from launchkit.description.substitutions.base import Value, perform
+from launchkit.errors import Location, RuntimeLaunchError
+
+if TYPE_CHECKING:
+    from launchkit.description.conditions import Condition
+    from launchkit.description.context import LaunchContext
+
+
+@dataclass(frozen=True)
+class IncludeArg:
+    """``<arg name value/>`` inside an include."""
+
+    name: str
+    value: Value
+
+
+class Include(Action):
+    """Load FILE, set its ``<arg>`` children as configurations, and run its actions."""
+
+    TAG = "include"
+
+    def __init__(
+        self,
+        file: Value,
+        args: Sequence[IncludeArg] = (),
+        location: Location | None = None,
+        condition: Condition | None = None,
+    ) -> None:
+        super().__init__(location, condition)
+        self.file = file
+        self.args = list(args)
+
+    def resolve(self, context: LaunchContext) -> Path:
+        """The included file: FILE as given (relative to the CWD, as ROS), else relative to
+        the including file's directory."""
+        text = perform(self.file, context)
+        path = Path(text).expanduser()
+        if not path.is_absolute() and not path.exists() and context.current_file is not None:
+            beside = context.current_file.parent / path
+            if beside.exists():
+                path = beside
+        if not path.is_file():
+            raise RuntimeLaunchError(
+                f"included launch file '{text}' does not exist",
+                self.location,
+                expected="a path to a launch file",
+            )
+        return path.resolve()
+
+    def execute(self, context: LaunchContext) -> None:
+        """Include the file in the current scope."""
+        path = self.resolve(context)
+        description = context.loader(path, self.location)
+        values = {arg.name: perform(arg.value, context) for arg in self.args}
+        context.configurations.update(values)
+        for required in description.required_arguments():
+            if required.name not in context.configurations:
+                raise required.missing_error().with_location(self.location or Location(str(path)))
+        with context.in_file(path):
+            for action in description.actions:
+                action.visit(context)

@@ -1,0 +1,155 @@
+"""``<param>`` inside ``<node>``: values, nested groups and YAML files, and their typing."""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import TYPE_CHECKING, Any
+
+import yaml
+
+from launchkit.description.substitutions.base import Value, perform
+from launchkit.errors import Location, RuntimeLaunchError
+
+if TYPE_CHECKING:
+    from launchkit.description.context import LaunchContext
+
+PARAM_TYPES = (
+    "str",
+    "bool",
+    "int",
+    "float",
+    "list_of_str",
+    "list_of_bool",
+    "list_of_int",
+    "list_of_float",
+    "yaml",
+)
+
+
+@dataclass
+class ParamValue:
+    """``<param name="n" value="v" [type] [value-sep]/>``."""
+
+    name: Value
+    value: Value
+    type: str | None = None
+    sep: Value | None = None
+    location: Location | None = None
+
+
+@dataclass
+class ParamGroup:
+    """``<param name="n">`` with nested ``<param>`` children (names joined with dots)."""
+
+    name: Value
+    children: list[ParamValue | ParamGroup] = field(default_factory=list)
+
+
+@dataclass
+class ParamFile:
+    """``<param from="file.yaml" [allow_substs]/>``."""
+
+    path: Value
+    allow_substs: bool = False
+    location: Location | None = None
+
+
+ParamEntry = ParamValue | ParamGroup | ParamFile
+
+
+def typed_value(text: str, kind: str | None, location: Location | None) -> Any:
+    """``text`` converted as ROS does: YAML inference unless ``type`` says otherwise."""
+    try:
+        if kind == "str":
+            return text
+        if kind is None or kind == "yaml":
+            value = yaml.safe_load(text) if text.strip() else text
+            return text if value is None else value
+        if kind == "bool":
+            value = yaml.safe_load(text)
+            if isinstance(value, bool):
+                return value
+            raise ValueError
+        if kind == "int":
+            return int(text)
+        if kind == "float":
+            return float(text)
+    except (ValueError, yaml.YAMLError):
+        raise RuntimeLaunchError(
+            f"parameter value {text!r} is not a {kind}", location, expected=f"a {kind} value"
+        ) from None
+    raise RuntimeLaunchError(
+        f"unknown parameter type {kind!r}", location, expected="one of " + ", ".join(PARAM_TYPES)
+    )
+
+
+def evaluate_value(param: ParamValue, context: LaunchContext) -> Any:
+    """The typed value of one ``<param>``."""
+    text = perform(param.value, context)
+    if param.sep is not None or (param.type or "").startswith("list_of_"):
+        item_type = (param.type or "").removeprefix("list_of_") or None
+        if param.sep is not None:
+            items = text.split(perform(param.sep, context))
+            return [typed_value(i, item_type, param.location) for i in items]
+        value = yaml.safe_load(text)
+        if not isinstance(value, list):
+            raise RuntimeLaunchError(
+                f"parameter value {text!r} is not a list",
+                param.location,
+                expected="a YAML list such as [1, 2] or a value-sep attribute",
+            )
+        return [typed_value(str(i), item_type, param.location) for i in value]
+    return typed_value(text, param.type, param.location)
+
+
+def evaluate_params(
+    entries: list[ParamEntry], context: LaunchContext
+) -> tuple[dict[str, Any], list[Path]]:
+    """Node parameters as a nested dict, and the YAML files to pass as ``--params-file``."""
+    values: dict[str, Any] = {}
+    files: list[Path] = []
+
+    def visit(items: list[ParamValue | ParamGroup], prefix: str) -> None:
+        for item in items:
+            name = prefix + perform(item.name, context)
+            if isinstance(item, ParamGroup):
+                visit(item.children, name + ".")
+            else:
+                values[name] = evaluate_value(item, context)
+
+    for entry in entries:
+        if isinstance(entry, ParamFile):
+            files.append(_params_file(entry, context))
+        else:
+            visit([entry], "")
+    return values, files
+
+
+def _params_file(entry: ParamFile, context: LaunchContext) -> Path:
+    path = Path(perform(entry.path, context))
+    if not path.is_file():
+        raise RuntimeLaunchError(
+            f"parameter file '{path}' does not exist", entry.location, expected="a YAML file"
+        )
+    if not entry.allow_substs:
+        return path.resolve()
+    from launchkit.frontend.substitution_parser import parse_value
+
+    text = perform(parse_value(path.read_text(), Location(str(path))), context)
+    return context.write_scratch_file("params_", ".yaml", text)
+
+
+def nest(flat: dict[str, Any]) -> dict[str, Any]:
+    """``{"a.b": 1}`` -> ``{"a": {"b": 1}}`` (how ROS writes dotted names in YAML)."""
+    nested: dict[str, Any] = {}
+    for key, value in flat.items():
+        node = nested
+        *parents, leaf = key.split(".")
+        for part in parents:
+            child = node.setdefault(part, {})
+            if not isinstance(child, dict):
+                child = node[part] = {}
+            node = child
+        node[leaf] = value
+    return nested

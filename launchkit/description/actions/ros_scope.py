@@ -1,0 +1,128 @@
+"""ROS scope tags: ``push_ros_namespace``, ``set_parameter``, ``set_parameters_from_file``,
+``set_remap``, ``set_use_sim_time``. Their effect is limited by ``<group>`` like configurations."""
+
+from __future__ import annotations
+
+from typing import TYPE_CHECKING
+
+from launchkit.description.actions.base import Action, typed_bool
+from launchkit.description.substitutions.base import Value, perform
+from launchkit.errors import Location
+
+if TYPE_CHECKING:
+    from launchkit.description.conditions import Condition
+    from launchkit.description.context import LaunchContext
+
+NAMESPACE_CONFIGURATION = "ros_namespace"
+
+
+def join_namespace(base: str, namespace: str) -> str:
+    """ROS namespace composition: an absolute ``namespace`` wins, a relative one is appended."""
+    if namespace.startswith("/"):
+        joined = namespace
+    else:
+        joined = base.rstrip("/") + "/" + namespace
+    joined = "/" + joined.strip("/")
+    return joined
+
+
+class PushRosNamespace(Action):
+    """Prefix the namespace of later nodes in scope."""
+
+    TAG = "push_ros_namespace"
+
+    def __init__(
+        self,
+        namespace: Value,
+        location: Location | None = None,
+        condition: Condition | None = None,
+    ) -> None:
+        super().__init__(location, condition)
+        self.namespace = namespace
+
+    def execute(self, context: LaunchContext) -> None:
+        """Push it (an empty namespace changes nothing)."""
+        namespace = perform(self.namespace, context).strip()
+        if namespace:
+            base = context.configurations.get(NAMESPACE_CONFIGURATION, "")
+            context.configurations[NAMESPACE_CONFIGURATION] = join_namespace(base, namespace)
+
+
+class SetParameter(Action):
+    """A parameter given to every later node in scope (and read by ``$(param)``)."""
+
+    TAG = "set_parameter"
+
+    def __init__(
+        self,
+        name: Value,
+        value: Value,
+        location: Location | None = None,
+        condition: Condition | None = None,
+    ) -> None:
+        super().__init__(location, condition)
+        self.name = name
+        self.value = value
+
+    def execute(self, context: LaunchContext) -> None:
+        """Record it in the scope."""
+        context.scope.global_params.append(
+            (perform(self.name, context), perform(self.value, context))
+        )
+
+
+class SetParametersFromFile(Action):
+    """A parameters file given to every later node in scope."""
+
+    TAG = "set_parameters_from_file"
+
+    def __init__(
+        self,
+        filename: Value,
+        location: Location | None = None,
+        condition: Condition | None = None,
+    ) -> None:
+        super().__init__(location, condition)
+        self.filename = filename
+
+    def execute(self, context: LaunchContext) -> None:
+        """Record it in the scope."""
+        context.scope.params_files.append(perform(self.filename, context))
+
+
+class SetRemap(Action):
+    """A remapping given to every later node in scope."""
+
+    TAG = "set_remap"
+
+    def __init__(
+        self,
+        src: Value,
+        dst: Value,
+        location: Location | None = None,
+        condition: Condition | None = None,
+    ) -> None:
+        super().__init__(location, condition)
+        self.src = src
+        self.dst = dst
+
+    def execute(self, context: LaunchContext) -> None:
+        """Record it in the scope."""
+        context.scope.remaps.append((perform(self.src, context), perform(self.dst, context)))
+
+
+class SetUseSimTime(Action):
+    """``use_sim_time`` for every later node in scope."""
+
+    TAG = "set_use_sim_time"
+
+    def __init__(
+        self, value: Value, location: Location | None = None, condition: Condition | None = None
+    ) -> None:
+        super().__init__(location, condition)
+        self.value = value
+
+    def execute(self, context: LaunchContext) -> None:
+        """Record ``use_sim_time`` as a global parameter."""
+        value = typed_bool(self.value, context, "set_use_sim_time value", self.location)
+        context.scope.global_params.append(("use_sim_time", "true" if value else "false"))

@@ -1,0 +1,159 @@
+"""The state actions read and change while a launch description executes.
+
+A :class:`Scope` holds what ``<group>`` pushes and pops: launch configurations (including
+``ros_namespace``), the environment, global ROS parameters and remaps. :class:`LaunchContext`
+adds what lives for the whole run: the package index, anonymous names, the log directory, the
+launch file being executed, and the :class:`Runtime` that starts processes and timers.
+"""
+
+from __future__ import annotations
+
+import copy
+import os
+import shutil
+import tempfile
+from collections.abc import Callable, Iterator
+from contextlib import contextmanager
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import TYPE_CHECKING, Protocol
+
+from launchkit.packages import PackageIndex
+
+if TYPE_CHECKING:
+    from launchkit.description.actions.timer import Timer
+    from launchkit.description.launch_description import LaunchDescription
+    from launchkit.description.process import ProcessSpec
+    from launchkit.errors import Location
+
+
+@dataclass
+class Scope:
+    """What a scoped ``<group>`` saves and restores."""
+
+    configurations: dict[str, str] = field(default_factory=dict)
+    environment: dict[str, str] = field(default_factory=dict)
+    global_params: list[tuple[str, str]] = field(default_factory=list)
+    params_files: list[str] = field(default_factory=list)
+    remaps: list[tuple[str, str]] = field(default_factory=list)
+
+    def copy(self) -> Scope:
+        """An independent copy (what a timer captures)."""
+        return copy.deepcopy(self)
+
+
+class Runtime(Protocol):
+    """What executing actions asks of whoever runs them (the supervisor, or a recorder)."""
+
+    def start_process(self, spec: ProcessSpec) -> None:
+        """Start (or, while recording, list) a process."""
+
+    def schedule_timer(self, period: float, timer: Timer, snapshot: Snapshot) -> None:
+        """Run the timer's actions after ``period`` seconds in the captured scope."""
+
+    def request_shutdown(self, reason: str) -> None:
+        """Shut the launch down (``<shutdown>``)."""
+
+    def log(self, level: str, logger: str, message: str) -> None:
+        """Print a launch line ``[LEVEL] [logger]: message``."""
+
+
+@dataclass(frozen=True)
+class Snapshot:
+    """A scope and file captured for later (timers run their actions in it)."""
+
+    scope: Scope
+    current_file: Path | None
+
+
+Loader = Callable[[Path, "Location | None"], "LaunchDescription"]
+
+
+class LaunchContext:
+    """Scopes, the current file and the run-wide services actions use."""
+
+    def __init__(
+        self,
+        *,
+        packages: PackageIndex,
+        runtime: Runtime,
+        loader: Loader,
+        environment: dict[str, str],
+        log_dir: Callable[[], Path],
+        configurations: dict[str, str] | None = None,
+    ) -> None:
+        self.packages = packages
+        self.runtime = runtime
+        self.loader = loader
+        self.initial_environment = dict(environment)
+        self.scope = Scope(configurations=dict(configurations or {}), environment=environment)
+        self.current_file: Path | None = None
+        self.anon_names: dict[str, str] = {}
+        self._log_dir = log_dir
+        self._stack: list[Scope] = []
+        self._scratch: Path | None = None
+
+    @property
+    def configurations(self) -> dict[str, str]:
+        """Launch configurations of the current scope."""
+        return self.scope.configurations
+
+    @property
+    def environment(self) -> dict[str, str]:
+        """Environment of the current scope (what a process started now inherits)."""
+        return self.scope.environment
+
+    @property
+    def log_dir(self) -> Path:
+        """This run's log directory."""
+        return self._log_dir()
+
+    def write_scratch_file(self, prefix: str, suffix: str, text: str) -> Path:
+        """Write a generated file (a node's parameters) that lives as long as the run."""
+        if self._scratch is None:
+            self._scratch = Path(tempfile.mkdtemp(prefix="launchkit-"))
+        handle, name = tempfile.mkstemp(prefix=prefix, suffix=suffix, dir=self._scratch)
+        with os.fdopen(handle, "w") as stream:
+            stream.write(text)
+        return Path(name)
+
+    def cleanup(self) -> None:
+        """Remove the generated files."""
+        if self._scratch is not None:
+            shutil.rmtree(self._scratch, ignore_errors=True)
+            self._scratch = None
+
+    def log(self, level: str, message: str, logger: str = "launch") -> None:
+        """Print a launch line through the runtime."""
+        self.runtime.log(level, logger, message)
+
+    @contextmanager
+    def scoped(self, scope: Scope | None = None) -> Iterator[None]:
+        """Run the body in a copy of the current scope (or in ``scope``), then restore."""
+        self._stack.append(self.scope)
+        self.scope = scope if scope is not None else self.scope.copy()
+        try:
+            yield
+        finally:
+            self.scope = self._stack.pop()
+
+    @contextmanager
+    def in_file(self, path: Path) -> Iterator[None]:
+        """Run the body as if written in ``path`` (``$(dirname)``, relative includes)."""
+        previous, self.current_file = self.current_file, path
+        try:
+            yield
+        finally:
+            self.current_file = previous
+
+    def snapshot(self) -> Snapshot:
+        """Capture the scope and file for a timer."""
+        return Snapshot(self.scope.copy(), self.current_file)
+
+    @contextmanager
+    def restored(self, snapshot: Snapshot) -> Iterator[None]:
+        """Run the body in a captured scope and file."""
+        with self.scoped(snapshot.scope.copy()), self.in_file(snapshot.current_file or Path()):
+            if snapshot.current_file is None:
+                self.current_file = None
+            yield

@@ -1,0 +1,52 @@
+"""A parsed launch file: its actions and the arguments it declares."""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import TYPE_CHECKING
+
+if TYPE_CHECKING:
+    from launchkit.description.actions.arg import DeclareArgument
+    from launchkit.description.actions.base import Action
+
+
+@dataclass
+class LaunchDescription:
+    """The actions of one launch file, in document order."""
+
+    path: Path
+    actions: list[Action] = field(default_factory=list)
+    deprecated: str | None = None
+
+    def declared_arguments(self) -> list[DeclareArgument]:
+        """Every ``<arg>`` of this file (inside groups too), in document order."""
+        from launchkit.description.actions.arg import DeclareArgument
+
+        return [a for a in walk(self.actions) if isinstance(a, DeclareArgument)]
+
+    def required_arguments(self) -> list[DeclareArgument]:
+        """``<arg>``s without a default that are reached unconditionally at the top level."""
+        from launchkit.description.actions.arg import DeclareArgument
+        from launchkit.description.actions.group import Group
+
+        found: list[DeclareArgument] = []
+        pending = list(self.actions)
+        while pending:
+            action = pending.pop(0)
+            if action.condition is not None:
+                continue
+            if isinstance(action, DeclareArgument) and action.default is None:
+                found.append(action)
+            elif isinstance(action, Group) and action.forwarding:
+                pending[0:0] = action.actions
+        return found
+
+
+def walk(actions: list[Action]) -> list[Action]:
+    """Every action in ``actions`` and their children, depth first, in document order."""
+    out: list[Action] = []
+    for action in actions:
+        out.append(action)
+        out.extend(walk(list(action.children())))
+    return out

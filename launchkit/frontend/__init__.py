@@ -1,0 +1,1 @@
+"""Syntax to description: the XML frontend and the substitution tokenizer."""

@@ -1,0 +1,140 @@
+"""Parsers for the tags ROS 2's ``launch_ros`` package defines."""
+
+from __future__ import annotations
+
+from typing import TYPE_CHECKING
+
+from launchkit.description.actions import (
+    Node,
+    ParamFile,
+    ParamGroup,
+    ParamValue,
+    PushRosNamespace,
+    Remap,
+    SetParameter,
+    SetParametersFromFile,
+    SetRemap,
+    SetUseSimTime,
+)
+from launchkit.description.actions.parameters import PARAM_TYPES
+from launchkit.frontend.registry import tag
+from launchkit.frontend.tags import leaf, only_children, parse_process_options
+
+if TYPE_CHECKING:
+    from launchkit.description.actions.base import Action
+    from launchkit.frontend.entity import Entity
+    from launchkit.frontend.xml_parser import XmlParser
+
+
+def parse_param(entity: Entity) -> ParamValue | ParamGroup | ParamFile:
+    """``<param>``: name+value [type, value-sep], name + nested params, or from [allow_substs]."""
+    source = entity.value("from")
+    name = entity.value("name")
+    if source is not None:
+        if name is not None:
+            raise entity.error(
+                "<param> has both 'from' and 'name'",
+                expected="either from=FILE or name=...",
+                attr="name",
+            )
+        leaf(entity)
+        allow = entity.static_bool("allow_substs", False)
+        entity.assert_fully_read()
+        return ParamFile(source, allow, entity.location)
+    if name is None:
+        raise entity.error("<param> needs 'name' or 'from'", expected='name="..." value="..."')
+    value = entity.value("value")
+    children = only_children(entity, ("param",))
+    if value is not None and children:
+        raise entity.error(
+            "<param> has both a value and nested <param>s", expected="one or the other"
+        )
+    if value is None:
+        if not children:
+            raise entity.error(
+                "<param> has no value", expected='value="..." or nested <param> elements'
+            )
+        entity.assert_fully_read()
+        return ParamGroup(name, [_no_file(c, parse_param(c)) for c in children])
+    kind = entity.plain("type")
+    if kind is not None and kind not in PARAM_TYPES:
+        raise entity.error(
+            f"<param> type is {kind!r}", expected="one of " + ", ".join(PARAM_TYPES), attr="type"
+        )
+    sep = entity.value("value-sep")
+    entity.assert_fully_read()
+    return ParamValue(name, value, kind, sep, entity.location)
+
+
+def _no_file(entity: Entity, param: ParamValue | ParamGroup | ParamFile) -> ParamValue | ParamGroup:
+    if isinstance(param, ParamFile):
+        raise entity.error("a nested <param> cannot use 'from'", expected="name and value")
+    return param
+
+
+@tag("node")
+def parse_node(entity: Entity, parser: XmlParser) -> Action:
+    """``<node pkg exec name namespace exec_name args ros_args ...>`` with ``<param>``,
+    ``<remap>`` and ``<env>`` children."""
+    children = only_children(entity, ("param", "remap", "env"))
+    params = [parse_param(c) for c in children if c.tag == "param"]
+    remaps = []
+    for child in children:
+        if child.tag == "remap":
+            remaps.append(Remap(child.required("from"), child.required("to")))
+            leaf(child).assert_fully_read()
+    node_name = entity.value("name")
+    options = parse_process_options(entity)
+    options.name = None  # `name` is the ROS node name here, not the process label
+    return Node(
+        entity.value("pkg"),
+        entity.required("exec", 'exec="EXECUTABLE"'),
+        options,
+        node_name=node_name,
+        namespace=entity.value("namespace"),
+        exec_name=entity.value("exec_name"),
+        args=entity.value("args"),
+        ros_args=entity.value("ros_args"),
+        params=params,
+        remaps=remaps,
+    )
+
+
+@tag("push_ros_namespace", "push-ros-namespace")
+def parse_push_ros_namespace(entity: Entity, parser: XmlParser) -> Action:
+    """``<push_ros_namespace namespace>``."""
+    leaf(entity)
+    return PushRosNamespace(entity.required("namespace"))
+
+
+@tag("set_parameter")
+def parse_set_parameter(entity: Entity, parser: XmlParser) -> Action:
+    """``<set_parameter name value>``."""
+    leaf(entity)
+    return SetParameter(entity.required("name"), entity.required("value"))
+
+
+@tag("set_parameters_from_file")
+def parse_set_parameters_from_file(entity: Entity, parser: XmlParser) -> Action:
+    """``<set_parameters_from_file filename>``."""
+    leaf(entity)
+    return SetParametersFromFile(entity.required("filename"))
+
+
+@tag("set_remap")
+def parse_set_remap(entity: Entity, parser: XmlParser) -> Action:
+    """``<set_remap from to>``."""
+    leaf(entity)
+    return SetRemap(entity.required("from"), entity.required("to"))
+
+
+@tag("set_use_sim_time")
+def parse_set_use_sim_time(entity: Entity, parser: XmlParser) -> Action:
+    """``<set_use_sim_time value>``."""
+    leaf(entity)
+    value = entity.checked("value", "bool")
+    if value is None:
+        raise entity.error(
+            "<set_use_sim_time> is missing attribute 'value'", expected='value="true"'
+        )
+    return SetUseSimTime(value)

@@ -1,0 +1,169 @@
+"""Hand-written tokenizer for attribute values: literal text and ``$(name arg ...)``.
+
+The grammar is ROS 2 launch's (``launch/frontend/grammar.lark``):
+
+* ``\\`` escapes the next character everywhere and is removed; ``$`` not followed by ``(`` is
+  literal.
+* ``$(NAME ARG ARG ...)``: NAME is a letter then letters, digits, ``_`` or ``-``; arguments are
+  separated by exactly one space.
+* An unquoted argument may not contain a space, a quote or a parenthesis (unless escaped); a
+  single- or double-quoted one may, and may hold nested substitutions. Parts glue together:
+  ``$(var $(var a)_x)``.
+"""
+
+from __future__ import annotations
+
+from launchkit.description.substitutions import SUBSTITUTIONS
+from launchkit.description.substitutions.base import Substitution, Text, Value
+from launchkit.errors import LaunchFileError, Location
+
+
+def parse_value(text: str, location: Location | None = None) -> Value:
+    """Parse ``text`` into literal text and substitutions; ``location`` is where it starts."""
+    return _Parser(text, location).parse_top()
+
+
+class _Parser:
+    """Recursive-descent parser over one attribute value."""
+
+    def __init__(self, text: str, location: Location | None) -> None:
+        self.text = text
+        self.pos = 0
+        self.location = location
+
+    # -- helpers -----------------------------------------------------------------------------
+
+    def error(self, message: str, expected: str, at: int | None = None) -> LaunchFileError:
+        where = self.location.shifted(self.pos if at is None else at) if self.location else None
+        return LaunchFileError(message, where, expected=expected)
+
+    def peek(self, offset: int = 0) -> str:
+        index = self.pos + offset
+        return self.text[index] if index < len(self.text) else ""
+
+    def at_call(self) -> bool:
+        return self.peek() == "$" and self.peek(1) == "("
+
+    # -- grammar -----------------------------------------------------------------------------
+
+    def parse_top(self) -> Value:
+        parts: list[Substitution] = []
+        buffer: list[str] = []
+        while self.pos < len(self.text):
+            char = self.peek()
+            if char == "\\" and self.pos + 1 < len(self.text):
+                buffer.append(self.text[self.pos + 1])
+                self.pos += 2
+            elif self.at_call():
+                _flush(buffer, parts)
+                parts.append(self.parse_call())
+            else:
+                buffer.append(char)
+                self.pos += 1
+        _flush(buffer, parts)
+        return tuple(parts)
+
+    def parse_call(self) -> Substitution:
+        start = self.pos
+        self.pos += 2  # "$("
+        name_start = self.pos
+        if not self.peek().isalpha():
+            raise self.error("malformed substitution", "a substitution name after '$('")
+        while self.peek() and (self.peek().isalnum() or self.peek() in "_-"):
+            self.pos += 1
+        name = self.text[name_start : self.pos]
+        args: list[Value] = []
+        while True:
+            char = self.peek()
+            if char == ")":
+                self.pos += 1
+                break
+            if char == "":
+                raise self.error(
+                    f"unterminated substitution $({name}", "')' to close it", at=len(self.text)
+                )
+            if char != " ":
+                raise self.error(
+                    f"unexpected {char!r} in $({name} ...)", "one space between arguments or ')'"
+                )
+            self.pos += 1
+            if self.peek() in (" ", ")", ""):
+                raise self.error(
+                    f"extra space in $({name} ...)",
+                    "exactly one space between arguments and none before ')'",
+                )
+            args.append(self.parse_argument(name))
+        cls = SUBSTITUTIONS.get(name)
+        where = self.location.shifted(start) if self.location else None
+        if cls is None:
+            raise LaunchFileError(
+                f"unknown substitution $({name})",
+                where,
+                expected="one of: " + ", ".join(sorted(SUBSTITUTIONS)),
+            )
+        return cls(args, where)
+
+    def parse_argument(self, name: str) -> Value:
+        parts: list[Substitution] = []
+        buffer: list[str] = []
+        while True:
+            char = self.peek()
+            if char in (" ", ")", ""):
+                break
+            if char == "\\" and self.pos + 1 < len(self.text):
+                buffer.append(self.text[self.pos + 1])
+                self.pos += 2
+            elif self.at_call():
+                _flush(buffer, parts)
+                parts.append(self.parse_call())
+            elif char in "'\"":
+                _flush(buffer, parts)
+                parts.extend(self.parse_quoted(char, name))
+            elif char == "(":
+                raise self.error(
+                    f"unescaped '(' in an argument of $({name} ...)",
+                    "a quoted argument or '\\(' for a literal parenthesis",
+                )
+            else:
+                buffer.append(char)
+                self.pos += 1
+        _flush(buffer, parts)
+        return tuple(parts)
+
+    def parse_quoted(self, quote: str, name: str) -> list[Substitution]:
+        start = self.pos
+        self.pos += 1
+        parts: list[Substitution] = []
+        buffer: list[str] = []
+        while True:
+            char = self.peek()
+            if char == "":
+                raise self.error(
+                    f"unterminated {quote} quote in $({name} ...)", f"a closing {quote}", at=start
+                )
+            if char == quote:
+                self.pos += 1
+                break
+            if char == "\\" and self.pos + 1 < len(self.text):
+                buffer.append(self.text[self.pos + 1])
+                self.pos += 2
+            elif self.at_call():
+                _flush(buffer, parts)
+                parts.append(self.parse_call())
+            else:
+                buffer.append(char)
+                self.pos += 1
+        _flush(buffer, parts)
+        if not parts:
+            parts.append(Text(""))
+        return parts
+
+
+def _flush(buffer: list[str], parts: list[Substitution]) -> None:
+    if buffer:
+        text = "".join(buffer)
+        if parts and isinstance(parts[-1], Text):
+            parts[-1] = Text(parts[-1].text + text)
+        else:
+            parts.append(Text(text))
+        buffer.clear()

@@ -1,0 +1,226 @@
+"""Parsers for the launch tags ROS 2's ``launch`` package defines (the ROS tags are in
+``ros_tags.py``)."""
+
+from __future__ import annotations
+
+from typing import TYPE_CHECKING
+
+from launchkit.description.actions import (
+    AppendEnv,
+    DeclareArgument,
+    ExecuteProcess,
+    Group,
+    Include,
+    IncludeArg,
+    Keep,
+    Log,
+    ProcessOptions,
+    Reset,
+    ResetEnv,
+    SetConfiguration,
+    SetEnv,
+    Shutdown,
+    Timer,
+    UnsetEnv,
+)
+from launchkit.description.actions.log import LEVELS
+from launchkit.description.process import OUTPUT_MODES
+from launchkit.description.substitutions.base import Text
+from launchkit.frontend.registry import tag
+
+if TYPE_CHECKING:
+    from launchkit.description.actions.base import Action
+    from launchkit.frontend.entity import Entity
+    from launchkit.frontend.xml_parser import XmlParser
+
+
+def only_children(entity: Entity, allowed: tuple[str, ...]) -> list[Entity]:
+    """``entity``'s children, all of which must be one of ``allowed`` tags."""
+    children = entity.children()
+    for child in children:
+        if child.tag not in allowed:
+            expected = "one of: " + ", ".join(f"<{t}>" for t in allowed) if allowed else "none"
+            raise child.error(
+                f"<{child.tag}> is not allowed inside <{entity.tag}>",
+                expected=f"child elements {expected}" if allowed else "no child elements",
+            )
+    return children
+
+
+def leaf(entity: Entity) -> Entity:
+    """Check that ``entity`` has no children and hand it back."""
+    only_children(entity, ())
+    return entity
+
+
+@tag("arg")
+def parse_arg(entity: Entity, parser: XmlParser) -> Action:
+    """``<arg name default description>`` with ``<choice value>`` children."""
+    name = entity.plain("name")
+    if not name:
+        raise entity.error("<arg> is missing attribute 'name'", expected='name="..."')
+    choices = []
+    for child in only_children(entity, ("choice",)):
+        value = child.plain("value")
+        if value is None:
+            raise child.error("<choice> is missing attribute 'value'", expected='value="..."')
+        child.assert_fully_read()
+        choices.append(value)
+    return DeclareArgument(
+        name,
+        entity.value("default"),
+        entity.plain("description") or "",
+        tuple(choices),
+    )
+
+
+@tag("let")
+def parse_let(entity: Entity, parser: XmlParser) -> Action:
+    """``<let name value>``."""
+    leaf(entity)
+    return SetConfiguration(entity.required("name"), entity.required("value"))
+
+
+def parse_keeps(entity: Entity, children: list[Entity]) -> list[Keep]:
+    """``<keep name value/>`` children."""
+    keeps = []
+    for child in children:
+        if child.tag == "keep":
+            keeps.append(Keep(child.required("name"), child.required("value")))
+            leaf(child).assert_fully_read()
+    return keeps
+
+
+@tag("group")
+def parse_group(entity: Entity, parser: XmlParser) -> Action:
+    """``<group scoped forwarding>`` with ``<keep>`` and action children."""
+    scoped = entity.static_bool("scoped", True)
+    forwarding = entity.static_bool("forwarding", True)
+    keeps = parse_keeps(entity, entity.children())
+    if keeps and forwarding:
+        raise entity.error(
+            '<keep> only applies to a group with forwarding="false"',
+            expected='forwarding="false" on the <group>',
+            attr=None,
+        )
+    return Group(parser.parse_actions(entity, skip=("keep",)), scoped, forwarding, keeps)
+
+
+@tag("reset")
+def parse_reset(entity: Entity, parser: XmlParser) -> Action:
+    """``<reset>`` with ``<keep>`` children."""
+    return Reset(parse_keeps(entity, only_children(entity, ("keep",))))
+
+
+@tag("include")
+def parse_include(entity: Entity, parser: XmlParser) -> Action:
+    """``<include file>`` with ``<arg name value/>`` children."""
+    args = []
+    for child in only_children(entity, ("arg",)):
+        name = child.plain("name")
+        value = child.value("value")
+        if not name or value is None:
+            raise child.error(
+                "<arg> inside <include> needs 'name' and 'value'",
+                expected='<arg name="..." value="..."/>',
+            )
+        leaf(child).assert_fully_read()
+        args.append(IncludeArg(name, value))
+    return Include(entity.required("file"), args)
+
+
+def parse_process_options(entity: Entity) -> ProcessOptions:
+    """The attributes and ``<env>`` children ``<executable>`` and ``<node>`` share."""
+    env = []
+    for child in entity.children():
+        if child.tag == "env":
+            env.append((child.required("name"), child.required("value")))
+            leaf(child).assert_fully_read()
+    return ProcessOptions(
+        cwd=entity.value("cwd"),
+        name=entity.value("name"),
+        launch_prefix=entity.value("launch-prefix"),
+        output=entity.choice("output", OUTPUT_MODES),
+        shell=entity.checked("shell", "bool"),
+        emulate_tty=entity.checked("emulate_tty", "bool"),
+        sigterm_timeout=entity.checked("sigterm_timeout", "ufloat"),
+        sigkill_timeout=entity.checked("sigkill_timeout", "ufloat"),
+        respawn=entity.checked("respawn", "bool"),
+        respawn_delay=entity.checked("respawn_delay", "ufloat"),
+        respawn_max_retries=entity.checked("respawn_max_retries", "int"),
+        on_exit=entity.choice("on_exit", ("shutdown",)),
+        env=env,
+    )
+
+
+@tag("executable")
+def parse_executable(entity: Entity, parser: XmlParser) -> Action:
+    """``<executable cmd ...>`` with ``<env>`` children."""
+    only_children(entity, ("env",))
+    cmd = entity.required("cmd", 'cmd="program args..."')
+    return ExecuteProcess(cmd, parse_process_options(entity))
+
+
+@tag("timer")
+def parse_timer(entity: Entity, parser: XmlParser) -> Action:
+    """``<timer period cancel_on_shutdown>`` with action children."""
+    period = entity.checked("period", "ufloat")
+    if period is None:
+        raise entity.error("<timer> is missing attribute 'period'", expected='period="SECONDS"')
+    cancel = entity.static_bool("cancel_on_shutdown", True)
+    return Timer(period, parser.parse_actions(entity), cancel)
+
+
+@tag("set_env")
+def parse_set_env(entity: Entity, parser: XmlParser) -> Action:
+    """``<set_env name value>``."""
+    leaf(entity)
+    return SetEnv(entity.required("name"), entity.required("value"))
+
+
+@tag("unset_env")
+def parse_unset_env(entity: Entity, parser: XmlParser) -> Action:
+    """``<unset_env name>``."""
+    leaf(entity)
+    return UnsetEnv(entity.required("name"))
+
+
+@tag("append_env")
+def parse_append_env(entity: Entity, parser: XmlParser) -> Action:
+    """``<append_env name value prepend separator>``."""
+    leaf(entity)
+    return AppendEnv(
+        entity.required("name"),
+        entity.required("value"),
+        entity.static_bool("prepend", False),
+        entity.value("separator"),
+    )
+
+
+@tag("reset_env")
+def parse_reset_env(entity: Entity, parser: XmlParser) -> Action:
+    """``<reset_env/>``."""
+    leaf(entity)
+    return ResetEnv()
+
+
+@tag("log")
+def parse_log(entity: Entity, parser: XmlParser) -> Action:
+    """``<log message [level]>``."""
+    leaf(entity)
+    level = (entity.plain("level") or "INFO").upper()
+    if level not in LEVELS:
+        raise entity.error(
+            f"<log> level is {level!r}", expected="one of " + ", ".join(LEVELS), attr="level"
+        )
+    return Log(entity.required("message"), level)
+
+
+@tag("shutdown")
+def parse_shutdown(entity: Entity, parser: XmlParser) -> Action:
+    """``<shutdown reason>``."""
+    leaf(entity)
+    return Shutdown(entity.value("reason") or (Text(""),))
+
+
+from launchkit.frontend import ros_tags as _ros_tags  # noqa: E402, F401  (registers ROS tags)

@@ -1,0 +1,202 @@
+"""The package index: where a package's share directory and executables are.
+
+Two sources, searched in this order:
+
+1. Python distributions that register a :class:`PythonPackage` in the ``launchkit.packages``
+   entry-point group (launchkit registers its stock packages and ``robot_wheel`` this way);
+2. ``AMENT_PREFIX_PATH`` prefixes laid out as ROS lays them out
+   (``PREFIX/share/ament_index/resource_index/packages/PKG``, ``PREFIX/share/PKG``,
+   ``PREFIX/lib/PKG/EXEC``), so a real ROS 2 install works unchanged.
+"""
+
+from __future__ import annotations
+
+import os
+import sys
+from collections.abc import Mapping
+from dataclasses import dataclass, field
+from pathlib import Path
+
+from launchkit.errors import PackageNotFoundError
+
+ENTRY_POINT_GROUP = "launchkit.packages"
+
+#: Folders of a share directory searched for launch files, in order.
+LAUNCH_FOLDERS = ("", "launch", "launch_xml")
+
+
+@dataclass(frozen=True)
+class PythonPackage:
+    """A ROS-style package provided by a Python distribution.
+
+    ``executables`` maps an executable name (what ``<node exec=...>`` names) to the Python
+    module that runs it as ``python -m MODULE``.
+    """
+
+    name: str
+    share: Path
+    executables: Mapping[str, str] = field(default_factory=dict)
+
+
+@dataclass(frozen=True)
+class FoundPackage:
+    """A package as the index found it: where it lives and which source it came from."""
+
+    name: str
+    prefix: Path
+    share: Path
+    source: str
+    python: PythonPackage | None = None
+
+
+class PackageIndex:
+    """Answers "share dir of PKG", "executable EXEC of PKG" and "which launch file is FILE"."""
+
+    def __init__(
+        self,
+        ament_prefix_path: str | None = None,
+        python_packages: Mapping[str, PythonPackage] | None = None,
+    ) -> None:
+        if ament_prefix_path is None:
+            ament_prefix_path = os.environ.get("AMENT_PREFIX_PATH", "")
+        self._prefixes = [Path(p) for p in ament_prefix_path.split(os.pathsep) if p]
+        self._python = python_packages
+        self._cache: dict[str, FoundPackage | None] = {}
+
+    # -- sources -----------------------------------------------------------------------------
+
+    def python_packages(self) -> Mapping[str, PythonPackage]:
+        """Packages registered by installed Python distributions (loaded once, lazily)."""
+        if self._python is None:
+            self._python = _load_entry_points()
+        return self._python
+
+    def _ament_package(self, name: str) -> FoundPackage | None:
+        for prefix in self._prefixes:
+            marker = prefix / "share" / "ament_index" / "resource_index" / "packages" / name
+            if marker.exists():
+                return FoundPackage(name, prefix, prefix / "share" / name, f"ament:{prefix}")
+        return None
+
+    # -- queries -----------------------------------------------------------------------------
+
+    def find(self, name: str) -> FoundPackage:
+        """The package ``name``; :class:`PackageNotFoundError` listing where it looked."""
+        if name not in self._cache:
+            self._cache[name] = self._lookup(name)
+        found = self._cache[name]
+        if found is None:
+            raise PackageNotFoundError(
+                f"package '{name}' not found",
+                expected="a package registered by an installed Python distribution "
+                "or present in AMENT_PREFIX_PATH",
+                hint="searched " + self.describe_search_path(),
+            )
+        return found
+
+    def _lookup(self, name: str) -> FoundPackage | None:
+        python = self.python_packages().get(name)
+        if python is not None:
+            return FoundPackage(name, python.share, python.share, "python", python)
+        return self._ament_package(name)
+
+    def describe_search_path(self) -> str:
+        """Human-readable list of the places packages are searched for."""
+        places = [f"entry points '{ENTRY_POINT_GROUP}' ({len(self.python_packages())} packages)"]
+        if self._prefixes:
+            places.append("AMENT_PREFIX_PATH=" + os.pathsep.join(map(str, self._prefixes)))
+        else:
+            places.append("AMENT_PREFIX_PATH (not set)")
+        return ", ".join(places)
+
+    def names(self) -> list[str]:
+        """Every known package name, sorted."""
+        names = set(self.python_packages())
+        for prefix in self._prefixes:
+            index = prefix / "share" / "ament_index" / "resource_index" / "packages"
+            if index.is_dir():
+                names.update(p.name for p in index.iterdir())
+        return sorted(names)
+
+    def share_dir(self, name: str) -> Path:
+        """What ``$(find-pkg-share NAME)`` returns."""
+        return self.find(name).share
+
+    def prefix(self, name: str) -> Path:
+        """What ``$(find-pkg-prefix NAME)`` and ``launchkit pkg prefix`` return."""
+        return self.find(name).prefix
+
+    def executable(self, package: str, executable: str) -> list[str]:
+        """The argv prefix that runs ``executable`` of ``package``."""
+        found = self.find(package)
+        if found.python is not None:
+            module = found.python.executables.get(executable)
+            if module is not None:
+                return [sys.executable, "-m", module]
+            known = ", ".join(sorted(found.python.executables)) or "none"
+            raise PackageNotFoundError(
+                f"executable '{executable}' not found in package '{package}'",
+                expected=f"one of: {known}",
+            )
+        libdir = found.prefix / "lib" / package
+        candidate = libdir / executable
+        if candidate.is_file() and os.access(candidate, os.X_OK):
+            return [str(candidate)]
+        raise PackageNotFoundError(
+            f"executable '{executable}' not found in package '{package}'",
+            expected=f"an executable file {candidate}",
+        )
+
+    def executables(self, package: str) -> list[str]:
+        """Names of the executables ``package`` provides."""
+        found = self.find(package)
+        if found.python is not None:
+            return sorted(found.python.executables)
+        libdir = found.prefix / "lib" / package
+        if not libdir.is_dir():
+            return []
+        return sorted(p.name for p in libdir.iterdir() if os.access(p, os.X_OK) and p.is_file())
+
+    def launch_file(self, package: str, filename: str) -> Path:
+        """``launchkit run PKG FILE``: FILE in the package's share dir or its launch folders."""
+        share = self.share_dir(package)
+        for candidate in _launch_candidates(share, filename):
+            if candidate.is_file():
+                return candidate
+        raise PackageNotFoundError(
+            f"launch file '{filename}' not found in package '{package}'",
+            expected="a file in "
+            + ", ".join(str(share / f) for f in LAUNCH_FOLDERS if f)
+            + f" or {share}",
+        )
+
+    def find_launch_file(self, filename: str) -> list[Path]:
+        """Every known package's launch file named ``filename`` (bare-name ``launchkit run``)."""
+        matches: list[Path] = []
+        for name in self.names():
+            try:
+                share = self.share_dir(name)
+            except PackageNotFoundError:
+                continue
+            for candidate in _launch_candidates(share, filename):
+                if candidate.is_file():
+                    matches.append(candidate)
+                    break
+        return matches
+
+
+def _launch_candidates(share: Path, filename: str) -> list[Path]:
+    return [share / folder / filename if folder else share / filename for folder in LAUNCH_FOLDERS]
+
+
+def _load_entry_points() -> dict[str, PythonPackage]:
+    from importlib.metadata import entry_points
+
+    found: dict[str, PythonPackage] = {}
+    for ep in entry_points(group=ENTRY_POINT_GROUP):
+        if ep.name in found:
+            continue  # first registration wins, as on a path
+        package = ep.load()
+        if isinstance(package, PythonPackage):
+            found[ep.name] = package
+    return found

@@ -1,0 +1,1 @@
+"""Running a launch: the supervisor loop, process lifecycle, output, signals and logs."""

@@ -1,0 +1,49 @@
+"""The ROS network a launch hosts: a Zenoh router started with the first ``<node>``."""
+
+from __future__ import annotations
+
+from typing import TYPE_CHECKING, Any, Protocol
+
+if TYPE_CHECKING:
+    from launchkit.description.context import Runtime
+
+ROUTER_ENV = "LAUNCHKIT_ROUTER"
+
+
+class RouterHandle(Protocol):
+    """What ``launchkit.ros.router.start_router`` returns."""
+
+    endpoint: str
+    hosted: bool
+
+    def close(self) -> None:
+        """Stop the router (when this process hosts it)."""
+
+
+class NodeNetwork:
+    """Starts the router once, when the first node starts, and tells nodes where it is."""
+
+    def __init__(self, endpoint: str | None = None) -> None:
+        self.endpoint = endpoint
+        self._router: RouterHandle | None = None
+
+    def ensure(self, runtime: Runtime) -> dict[str, str]:
+        """Environment additions for a node process (starting the router if needed)."""
+        if self._router is None:
+            self._router = _start_router(self.endpoint)
+            verb = "started" if self._router.hosted else "joined"
+            runtime.log("INFO", "launch", f"{verb} the ROS router at {self._router.endpoint}")
+        return {ROUTER_ENV: self._router.endpoint}
+
+    def close(self) -> None:
+        """Stop the router if this launch hosts it."""
+        if self._router is not None:
+            self._router.close()
+            self._router = None
+
+
+def _start_router(endpoint: str | None) -> Any:
+    # zenoh is heavy: imported only when the first node starts
+    from launchkit.ros.router import start_router  # type: ignore[import-not-found,unused-ignore]
+
+    return start_router(endpoint)

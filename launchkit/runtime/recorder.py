@@ -1,0 +1,97 @@
+"""A runtime that runs nothing: it records what a launch would start, for ``--print``."""
+
+from __future__ import annotations
+
+import shlex
+from dataclasses import dataclass, field
+from typing import TYPE_CHECKING
+
+from launchkit.description.process import ProcessSpec
+
+if TYPE_CHECKING:
+    from launchkit.description.actions.timer import Timer
+    from launchkit.description.context import LaunchContext, Snapshot
+
+
+@dataclass
+class Recorded:
+    """One thing the launch would do: a process, a timer (with what it would do), a shutdown,
+    or a log line."""
+
+    kind: str
+    delay: float = 0.0
+    spec: ProcessSpec | None = None
+    text: str = ""
+    inner: list[Recorded] = field(default_factory=list)
+
+
+class Recorder:
+    """The :class:`Runtime` for ``--print``: timers are evaluated at once, in their scope."""
+
+    def __init__(self) -> None:
+        self.context: LaunchContext | None = None
+        self.items: list[Recorded] = []
+        self._target = self.items
+
+    def start_process(self, spec: ProcessSpec) -> None:
+        """Record the process."""
+        self._target.append(Recorded("process", spec=spec))
+
+    def schedule_timer(self, period: float, timer: Timer, snapshot: Snapshot) -> None:
+        """Record the timer and what it would do when it fires."""
+        item = Recorded("timer", delay=period)
+        self._target.append(item)
+        outer, self._target = self._target, item.inner
+        try:
+            assert self.context is not None
+            with self.context.restored(snapshot):
+                for action in timer.actions:
+                    action.visit(self.context)
+        finally:
+            self._target = outer
+
+    def request_shutdown(self, reason: str) -> None:
+        """Record the shutdown."""
+        self._target.append(Recorded("shutdown", text=reason))
+
+    def log(self, level: str, logger: str, message: str) -> None:
+        """Record the log line."""
+        self._target.append(Recorded("log", text=f"[{level}] [{logger}]: {message}"))
+
+
+def render(items: list[Recorded], indent: str = "") -> str:
+    """The recorded launch as readable text."""
+    lines: list[str] = []
+    for item in items:
+        if item.kind == "process" and item.spec is not None:
+            spec = item.spec
+            kind = "node" if spec.is_node else "process"
+            lines.append(
+                f"{indent}{kind} {spec.name}" + (f"  ({spec.location})" if spec.location else "")
+            )
+            lines.append(f"{indent}  cmd: {shlex.join(spec.cmd)}")
+            lines.append(f"{indent}  cwd: {spec.cwd or '(launch directory)'}")
+            lines.append(f"{indent}  output: {spec.output}")
+            for name, value in sorted(spec.env_changes.items()):
+                change = "(unset)" if value is None else value
+                lines.append(f"{indent}  env: {name}={change}")
+            if spec.respawn:
+                retries = (
+                    "forever"
+                    if spec.respawn_max_retries < 0
+                    else f"{spec.respawn_max_retries} times"
+                )
+                lines.append(f"{indent}  respawn: after {spec.respawn_delay:g} s, {retries}")
+            if spec.on_exit_shutdown:
+                lines.append(f"{indent}  on_exit: shutdown")
+            for path, text in spec.files.items():
+                lines.append(f"{indent}  file {path}:")
+                lines.extend(f"{indent}    {line}" for line in text.splitlines())
+        elif item.kind == "timer":
+            lines.append(f"{indent}timer after {item.delay:g} s:")
+            lines.append(render(item.inner, indent + "  ") or f"{indent}  (nothing)")
+        elif item.kind == "shutdown":
+            lines.append(f"{indent}shutdown: {item.text}")
+        else:
+            lines.append(f"{indent}{item.text}")
+    return "\n".join(line for line in lines if line)
