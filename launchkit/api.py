@@ -101,7 +101,7 @@ def describe(path: Path, arguments: Mapping[str, str] | None = None) -> str:
 
 def show_arguments(path: Path) -> str:
     """The arguments ``path`` declares, with defaults, descriptions and choices."""
-    description = check(path).top
+    description = check_tree(path, None, XmlParser(), PackageIndex()).top
     lines = ["Arguments (pass arguments as '<name>:=<value>'):"]
     declared = description.declared_arguments()
     if not declared:

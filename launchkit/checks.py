@@ -55,11 +55,12 @@ def parse_launch_arguments(items: list[str]) -> dict[str, str]:
 
 def check_tree(
     path: Path,
-    arguments: Mapping[str, str],
+    arguments: Mapping[str, str] | None,
     parser: XmlParser,
     packages: PackageIndex,
 ) -> CheckedTree:
-    """Parse ``path`` and its static includes and check ``arguments``; raise on the first error."""
+    """Parse ``path`` and its static includes and check ``arguments`` (unless None, as for
+    ``--show-args``); raise on the first error."""
     tree = CheckedTree(parser.load(path))
     pending = [tree.top]
     while pending:
@@ -81,7 +82,8 @@ def check_tree(
             child = parser.load(included, action.location)
             tree.files[included] = child
             pending.append(child)
-    check_arguments(tree.top, arguments)
+    if arguments is not None:
+        check_arguments(tree.top, arguments)
     return tree
 
 
