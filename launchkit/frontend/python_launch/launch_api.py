@@ -32,7 +32,7 @@ from launchkit.description.substitutions import (
     Var,
 )
 from launchkit.description.substitutions import Or as OrSub
-from launchkit.description.substitutions.base import perform
+from launchkit.description.substitutions.base import Substitution, perform
 from launchkit.frontend.python_launch.values import (
     SubstitutionLike,
     here,
@@ -130,11 +130,10 @@ class PathJoinSubstitution(SubstitutionLike):
         super().__init__(_Joined(to_value(parts)))
 
 
-class _Joined(Text):
+class _Joined(Substitution):
     """A concatenation behaving as one substitution (what PathJoinSubstitution yields)."""
 
     def __init__(self, value: tuple[Any, ...]) -> None:
-        super().__init__("")
         self.value = value
 
     def perform(self, context: LaunchContext) -> str:
