@@ -200,3 +200,24 @@ def test_timer_runs_after_its_period_with_output_in_order(run) -> None:  # type:
     launcher.wait_line("[late-2] late")
     launcher.signal(signal.SIGINT)
     assert launcher.finish() == 0
+
+
+def test_emulate_tty_gives_the_child_a_terminal(run) -> None:  # type: ignore[no-untyped-def]
+    probe = "import sys; print('tty' if sys.stdout.isatty() else 'pipe', flush=True)"
+    launcher = run(
+        executable("with", probe, emulate_tty="true") + "\n" + executable("without", probe)
+    )
+    assert launcher.finish() == 0
+    assert "[with-1] tty" in launcher.text
+    assert "[without-2] pipe" in launcher.text
+
+
+def test_failing_command_substitution_at_run_time_stops_everything(run, tmp_path) -> None:  # type: ignore[no-untyped-def]
+    launcher = run(
+        executable("py", "import time; print('ready', flush=True); time.sleep(300)")
+        + '\n<timer period="0.2">\n  <log message="$(command \'false\')"/>\n</timer>'
+    )
+    assert launcher.finish() == 1
+    assert "t.launch.xml:4:" in launcher.text and "'false' failed" in launcher.text
+    assert "Traceback" not in launcher.text
+    wait_gone(list(launcher.pids.values()))
