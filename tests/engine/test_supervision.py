@@ -214,7 +214,7 @@ def test_emulate_tty_gives_the_child_a_terminal(run) -> None:  # type: ignore[no
 
 def test_failing_command_substitution_at_run_time_stops_everything(run, tmp_path) -> None:  # type: ignore[no-untyped-def]
     launcher = run(
-        executable("py", "import time; print('ready', flush=True); time.sleep(300)")
+        '<executable name="sleeper" cmd="sleep 300"/>'
         + '\n<timer period="0.2">\n  <log message="$(command \'false\')"/>\n</timer>'
     )
     assert launcher.finish() == 1
