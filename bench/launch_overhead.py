@@ -50,6 +50,34 @@ def run_quiet(argv: list[str], env: dict[str, str]) -> None:
     subprocess.run(argv, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL, env=env, check=True)
 
 
+def launch_times(path: Path, count: int, env: dict[str, str]) -> tuple[float, float]:
+    """Seconds from spawning ``launchkit run`` to its ``count``-th "process started" line, and
+    to its exit."""
+    start = time.perf_counter()
+    proc = subprocess.Popen(
+        [*LAUNCHKIT, "run", str(path)], stdout=subprocess.PIPE, text=True, env=env
+    )
+    assert proc.stdout is not None
+    started, all_started = 0, 0.0
+    for line in proc.stdout:
+        if "process started with pid" in line:
+            started += 1
+            if started == count:
+                all_started = time.perf_counter() - start
+    proc.wait()
+    return all_started, time.perf_counter() - start
+
+
+def popen_times(count: int) -> tuple[float, float]:
+    """The floor: ``count`` plain Popen calls of ``echo hi``, then waiting for them all."""
+    start = time.perf_counter()
+    procs = [subprocess.Popen(["echo", "hi"], stdout=subprocess.DEVNULL) for _ in range(count)]
+    all_started = time.perf_counter() - start
+    for proc in procs:
+        proc.wait()
+    return all_started, time.perf_counter() - start
+
+
 def shutdown_time(path: Path, env: dict[str, str]) -> float:
     """Seconds from SIGINT to the launcher's exit, once its 10 children have started."""
     proc = subprocess.Popen(
@@ -107,22 +135,18 @@ def main() -> None:
             f"{baseline * 1000:.0f} ms; ros2 launch measured 240 ms fixed cost)"
         )
         for n in (1, 10, 100):
-            path = write(directory, f"n{n}.launch.xml", '<executable cmd="true"/>\n' * n)
-            launched = median_time(
-                lambda p=path: run_quiet([*LAUNCHKIT, "run", str(p)], env), repeat
-            )
-
-            def popen_loop(count: int = n) -> None:
-                procs = [subprocess.Popen(["true"]) for _ in range(count)]
-                for proc in procs:
-                    proc.wait()
-
-            plain = median_time(popen_loop, repeat)
+            path = write(directory, f"n{n}.launch.xml", '<executable cmd="echo hi"/>\n' * n)
+            runs = [launch_times(path, n, env) for _ in range(repeat)]
+            started = statistics.median(r[0] for r in runs)
+            finished = statistics.median(r[1] for r in runs)
+            floor = [popen_times(n) for _ in range(repeat)]
+            floor_started = statistics.median(f[0] for f in floor)
+            floor_finished = statistics.median(f[1] for f in floor)
             print(
-                f"{n:>3} processes to completion: {launched * 1000:.0f} ms "
-                f"(Popen loop alone: {plain * 1000:.0f} ms; overhead "
-                f"{(launched - plain - empty_t) * 1000 / n:.2f} ms per process beyond the "
-                "empty launch)"
+                f"{n:>3} x echo: all started {started * 1000:.0f} ms, all exited "
+                f"{finished * 1000:.0f} ms (Popen loop: {floor_started * 1000:.1f} ms / "
+                f"{floor_finished * 1000:.1f} ms); beyond the empty launch: "
+                f"{(started - empty_t) * 1000:.0f} ms to start them all"
             )
         sleepers = write(directory, "sleepers.launch.xml", '<executable cmd="sleep 60"/>\n' * 10)
         stop = statistics.median(shutdown_time(sleepers, env) for _ in range(repeat))
