@@ -45,8 +45,8 @@ T = TypeVar("T")
 
 DEFAULT_READY_TIMEOUT = 30.0
 _STOP_MARGIN = 5.0  # beyond the launcher's own SIGINT -> SIGTERM -> SIGKILL escalation
-_AFTER_SIGTERM = 3.0
-_VANISH = 2.0  # for processes already killed to disappear from /proc
+_AFTER_SIGTERM = 2.0
+_VANISH = 1.0  # for processes already killed to disappear from /proc
 _REPORT_LINES = 500
 
 # launches not yet stopped, for the plugin's backstops (session end, interrupt, exit)

@@ -97,3 +97,19 @@ def test_assert_exit_codes_reports_every_mismatch(launch):
     with pytest.raises(AssertionError, match=r"names no process of the launch: sim"):
         result.assert_exit_codes({"sim": 0})
     result.assert_exit_codes({"crasher": {1, 3}})
+
+
+def test_a_respawning_process_may_die_without_failing_waits(launch):
+    handle = launch("launch/respawn.launch.xml")
+    crashes = 0
+
+    def third_crash(line: str) -> bool:
+        nonlocal crashes
+        crashes += line == "crashing"
+        return crashes == 3
+
+    crasher = handle.process("crasher")
+    crasher.wait_output(third_crash, timeout=10)
+    assert crasher.wait_exit(timeout=5) == 3
+    assert handle.process("steady").wait_output("steady waiting", timeout=5)
+    handle.stop().assert_exit_codes({"steady": 0, "crasher": 3})

@@ -62,3 +62,16 @@ def test_a_process_escaping_its_group_fails_the_teardown_and_is_killed(launch):
     assert f"pid {escaped} " in message and "survived its teardown" in message
     assert "os.setpgid(0, 0)" in message  # its command line
     assert not _alive(escaped)
+
+
+def test_a_hanging_launcher_is_escalated_by_the_plugin(launch):
+    handle = launch("launch/talker.launch.xml")
+    talker = handle.process("talker")
+    talker.wait_output("talker waiting", timeout=5)
+    os.kill(handle.pid, signal.SIGSTOP)  # the launcher can no longer react to anything
+
+    result = handle.stop(timeout=0.5)
+
+    assert "sent SIGTERM" in handle.stop_notes[0] and "SIGKILL" in handle.stop_notes[1]
+    assert result.returncode == -signal.SIGKILL
+    assert not _alive(talker.pid)
