@@ -73,7 +73,10 @@ class LaunchState:
     def apply(self, event: dict[str, Any]) -> None:
         """Take in one event from the launcher and wake the waiters."""
         with self.condition:
-            self._apply(event)
+            try:
+                self._apply(event)
+            except (KeyError, TypeError, ValueError):
+                pass  # not an event this version understands; keep following the launch
             self.condition.notify_all()
 
     def _apply(self, event: dict[str, Any]) -> None:

@@ -89,3 +89,18 @@ def test_the_launch_stops_when_the_test_process_goes_away(tmp_path):
         assert _procscan.wait_gone(_procscan.members(pids), Deadline(5)) == []
     finally:
         channel.close()
+
+
+def test_a_bad_events_fd_is_a_user_error(tmp_path):
+    talker = str(LAUNCH_DIR / "talker.launch.xml")
+    done = subprocess.run(
+        [sys.executable, "-m", "launchkit", "run", "--events-fd", "999", talker],
+        capture_output=True,
+        text=True,
+        timeout=scaled(30),
+        check=False,
+        env={**os.environ, "ROS_LOG_DIR": str(tmp_path)},
+    )
+    assert done.returncode == 2
+    assert done.stderr.startswith("error: --events-fd 999: Bad file descriptor")
+    assert "Traceback" not in done.stderr
