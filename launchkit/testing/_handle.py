@@ -145,9 +145,10 @@ class LaunchHandle:
                 if deadline.expired():
                     break
                 state.condition.wait(deadline.remaining())
-            if state.ready:
+            if state.ready and not state.errors:
                 return
-            failure = state.failure
+            # an error in the first pass (a process that could not be spawned) fails it too
+            failure = state.failure or (state.errors[0] if state.errors else None)
             evidence = describe_launch(state, self.launcher_log)
         _, leftovers = self._shutdown(None)
         if leftovers:

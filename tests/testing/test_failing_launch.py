@@ -45,3 +45,11 @@ def test_an_unknown_package_fails_with_launchkits_message(launch):
     with pytest.raises(LaunchFailed) as caught:
         launch("no_such_package", "x.launch.xml")
     assert _launchkit_says("run", "no_such_package", "x.launch.xml") in str(caught.value)
+
+
+def test_a_process_that_cannot_be_spawned_fails_the_launch_at_once(launch):
+    with pytest.raises(LaunchFailed) as caught:
+        launch("launch/spawn_fails.launch.xml")
+    message = str(caught.value)
+    assert message.startswith("spawn_fails.launch.xml failed before it was ready:\n")
+    assert "lost-1: could not start process: No such file or directory: 'echo'" in message
