@@ -110,3 +110,11 @@ def test_a_leftover_process_fails_the_test_at_teardown(pytester):
             "1 process(es) of escape.launch.xml survived its teardown*",
         ]
     )
+
+
+def test_a_bad_timeout_scale_stops_the_run_before_any_test(pytester, monkeypatch):
+    pytester.makepyfile("def test_nothing():\n    pass\n")
+    monkeypatch.setenv("LAUNCHKIT_TIMEOUT_SCALE", "0")
+    result = pytester.runpytest("-p", "no:cacheprovider")
+    assert result.ret == pytest.ExitCode.USAGE_ERROR
+    result.stderr.fnmatch_lines(["*LAUNCHKIT_TIMEOUT_SCALE='0': expected a positive number*"])
