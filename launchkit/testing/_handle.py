@@ -147,6 +147,7 @@ class LaunchHandle:
                 state.condition.wait(deadline.remaining())
             if state.ready and not state.errors:
                 return
+            ended = state.channel_closed
             # an error in the first pass (a process that could not be spawned) fails it too
             failure = state.failure or (state.errors[0] if state.errors else None)
             evidence = describe_launch(state, self.launcher_log)
@@ -156,12 +157,11 @@ class LaunchHandle:
             failure = (failure or "") + f"\n(and these survived its teardown: {found})"
         if failure is not None:
             raise LaunchFailed(f"{self.title} failed before it was ready:\n{failure}")
-        if self.state.launcher_returncode is not None and not deadline.expired():
+        if ended:
+            code = self._popen.returncode
+            status = "" if code is None else f" (launcher {describe_exit(code)})"
             printed = "\n".join(tail(launcher_lines(self.launcher_log)))
-            raise LaunchFailed(
-                f"{self.title} ended before it was ready "
-                f"(launcher {describe_exit(self.state.launcher_returncode)}):\n{printed}"
-            )
+            raise LaunchFailed(f"{self.title} ended before it was ready{status}:\n{printed}")
         raise LaunchFailed(
             f"{self.title} was not ready after {deadline.seconds:g} s "
             f"(the launcher had not finished starting its processes)\n{evidence}"

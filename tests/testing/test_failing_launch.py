@@ -53,3 +53,11 @@ def test_a_process_that_cannot_be_spawned_fails_the_launch_at_once(launch):
     message = str(caught.value)
     assert message.startswith("spawn_fails.launch.xml failed before it was ready:\n")
     assert "lost-1: could not start process: No such file or directory: 'echo'" in message
+
+
+def test_a_launcher_that_crashes_fails_the_launch_with_what_it_printed(launch):
+    with pytest.raises(LaunchFailed) as caught:
+        launch("launch/talker.launch.xml", env={"PYTHONHOME": "/nonexistent/python-home"})
+    message = str(caught.value)
+    assert message.startswith("talker.launch.xml ended before it was ready (launcher exit code")
+    assert "Fatal Python error" in message  # what the launcher printed
