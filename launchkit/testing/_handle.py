@@ -292,10 +292,10 @@ class LaunchHandle:
             slowest = max((r.escalation for r in state.processes.values()), default=0.0)
         if self._popen.poll() is None:
             self._signal_launcher(signal.SIGINT)
-            budget = slowest + _STOP_MARGIN if timeout is None else timeout
-            if not self._await_launcher(Deadline(budget)):
+            budget = Deadline(slowest + _STOP_MARGIN if timeout is None else timeout)
+            if not self._await_launcher(budget):
                 self.stop_notes.append(
-                    f"the launcher was still running {budget:g} s (scaled) after SIGINT: "
+                    f"the launcher was still running {budget.seconds:g} s after SIGINT: "
                     "sent SIGTERM to it and to every process group of the launch"
                 )
                 self._signal_launcher(signal.SIGTERM)

@@ -10,6 +10,7 @@ from __future__ import annotations
 import os
 import select
 import signal
+import threading
 from collections.abc import Collection
 from dataclasses import dataclass
 from pathlib import Path
@@ -17,6 +18,7 @@ from pathlib import Path
 from launchkit.testing._deadline import Deadline
 
 _PROC = Path("/proc")
+_POLL = 0.02  # only without pidfds
 
 
 @dataclass(frozen=True)
@@ -90,12 +92,18 @@ def wait_gone(processes: Collection[LiveProcess], deadline: Deadline) -> list[Li
     """Wait (through pidfds) until ``processes`` have exited or ``deadline`` passes; those
     still alive then."""
     waiting: dict[int, LiveProcess] = {}
+    unwatched: list[LiveProcess] = []
     for process in processes:
         try:
             fd = os.pidfd_open(process.pid)
-        except OSError:
+        except ProcessLookupError:
             continue  # already gone
+        except OSError:
+            unwatched.append(process)  # a kernel without pidfds (before Linux 5.3)
+            continue
         waiting[fd] = process
+    if unwatched:
+        _poll_gone(unwatched, deadline)
     try:
         while waiting and not deadline.expired():
             ready, _, _ = select.select(list(waiting), [], [], deadline.remaining())
@@ -107,7 +115,13 @@ def wait_gone(processes: Collection[LiveProcess], deadline: Deadline) -> list[Li
         for fd in waiting:
             os.close(fd)
     # a pidfd turns readable only once the process is reaped or a zombie; re-check state
-    return [p for p in still if _alive(p.pid)]
+    return [p for p in [*still, *unwatched] if _alive(p.pid)]
+
+
+def _poll_gone(processes: list[LiveProcess], deadline: Deadline) -> None:
+    pause = threading.Event()
+    while any(_alive(p.pid) for p in processes) and not deadline.expired():
+        pause.wait(min(_POLL, deadline.remaining()))
 
 
 def _alive(pid: int) -> bool:
