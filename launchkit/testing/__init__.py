@@ -20,6 +20,7 @@ from launchkit.testing._errors import (
     ProcessLeftBehind,
     WaitTimeout,
 )
+from launchkit.testing._factory import LaunchFactory
 from launchkit.testing._handle import LaunchHandle
 from launchkit.testing._matchers import Matcher
 from launchkit.testing._process import ProcessHandle
@@ -27,6 +28,7 @@ from launchkit.testing._result import LaunchResult
 
 __all__ = [
     "ExitCodeMismatch",
+    "LaunchFactory",
     "LaunchFailed",
     "LaunchHandle",
     "LaunchResult",

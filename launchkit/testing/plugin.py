@@ -5,82 +5,26 @@ every launch when the session ends or is interrupted."""
 from __future__ import annotations
 
 import atexit
-import os
-from collections.abc import Generator, Iterator, Mapping
+from collections.abc import Generator, Iterator
 from pathlib import Path
 
 import pytest
 
-from launchkit.testing._deadline import TIMEOUT_SCALE_ENV, timeout_scale
+from launchkit.testing._deadline import timeout_scale
 from launchkit.testing._errors import LaunchTestError
-from launchkit.testing._handle import DEFAULT_READY_TIMEOUT, LIVE, LaunchHandle, format_items
+from launchkit.testing._factory import LaunchFactory
+from launchkit.testing._handle import LIVE, LaunchHandle
 
 # the launches a pytest session started (a pytester run inside a test is a session of its own)
 _LAUNCHES = pytest.StashKey[set[LaunchHandle]]()
 
 
-class LaunchFactory:
-    """What the ``launch`` fixtures give a test: call it to start a launch.
-
-    ``launch("robot_wheel", "hello.launch.xml", args={"count": 2})`` (a package and a file),
-    or ``launch("launch/talker.launch.xml")`` (a path: absolute, relative to the test file's
-    folder, or relative to the current directory). Returns a ready :class:`LaunchHandle`.
-    """
-
-    def __init__(self, request: pytest.FixtureRequest, tmp: pytest.TempPathFactory) -> None:
-        self._tmp = tmp
-        self._session_launches = request.config.stash.setdefault(_LAUNCHES, set())
-        self._here = Path(request.path).parent
-        self.handles: list[LaunchHandle] = []
-
-    def __call__(
-        self,
-        target: str | os.PathLike[str],
-        file: str | None = None,
-        *,
-        args: Mapping[str, object] | None = None,
-        env: Mapping[str, str] | None = None,
-        cwd: str | os.PathLike[str] | None = None,
-        ready_timeout: float = DEFAULT_READY_TIMEOUT,
-    ) -> LaunchHandle:
-        """Start the launch in the background and return once it is ready (it raises
-        :class:`launchkit.testing.LaunchFailed` with launchkit's message if it fails first)."""
-        __tracebackhide__ = True
-        name = self._resolve(target) if file is None else str(target)
-        title = Path(name).name if file is None else f"{name} {file}"
-        handle = LaunchHandle(
-            format_items(name, file, args),
-            log_dir=self._tmp.mktemp("launch", numbered=True),
-            title=title,
-            env=env,
-            cwd=cwd,
-        )
-        self.handles.append(handle)
-        self._session_launches.add(handle)
-        handle.wait_ready(ready_timeout)
-        return handle
-
-    def _resolve(self, target: str | os.PathLike[str]) -> str:
-        path = Path(target)
-        if path.is_absolute():
-            return str(path)
-        for base in (self._here, Path.cwd()):
-            if (base / path).is_file():
-                return str((base / path).resolve())
-        return str(target)  # a file name launchkit looks up in the packages
-
-    def stop_all(self) -> None:
-        """Stop every launch this factory started (newest first); raise the first failure
-        after all are stopped."""
-        __tracebackhide__ = True
-        failures: list[LaunchTestError] = []
-        for handle in reversed(self.handles):
-            try:
-                handle.stop()
-            except LaunchTestError as failure:
-                failures.append(failure)
-        if failures:
-            raise failures[0]
+def _factory(request: pytest.FixtureRequest, tmp: pytest.TempPathFactory) -> LaunchFactory:
+    return LaunchFactory(
+        Path(request.path).parent,
+        lambda: tmp.mktemp("launch", numbered=True),
+        request.config.stash.setdefault(_LAUNCHES, set()),
+    )
 
 
 @pytest.fixture
@@ -88,7 +32,7 @@ def launch(
     request: pytest.FixtureRequest, tmp_path_factory: pytest.TempPathFactory
 ) -> Iterator[LaunchFactory]:
     """Start launches for one test; they are stopped, and checked for survivors, after it."""
-    factory = LaunchFactory(request, tmp_path_factory)
+    factory = _factory(request, tmp_path_factory)
     yield factory
     factory.stop_all()
 
@@ -98,20 +42,17 @@ def launch_module(
     request: pytest.FixtureRequest, tmp_path_factory: pytest.TempPathFactory
 ) -> Iterator[LaunchFactory]:
     """Like ``launch``, for launches shared by every test of a module (expensive ones)."""
-    factory = LaunchFactory(request, tmp_path_factory)
+    factory = _factory(request, tmp_path_factory)
     yield factory
     factory.stop_all()
 
 
 def pytest_configure(config: pytest.Config) -> None:
-    """Check ``LAUNCHKIT_TIMEOUT_SCALE`` once, up front."""
+    """Check ``LAUNCHKIT_TIMEOUT_SCALE`` once, up front: a bad value stops the run."""
     try:
         timeout_scale()
     except ValueError as error:
         raise pytest.UsageError(str(error)) from None
-    config.addinivalue_line(
-        "markers", f"launchkit: process tests (deadlines scale with {TIMEOUT_SCALE_ENV})"
-    )
 
 
 @pytest.hookimpl(wrapper=True)
