@@ -38,3 +38,14 @@ def test_a_shared_launch_is_the_same_in_every_test(quiet_hello):
 def test_a_shared_launch_keeps_its_output(quiet_hello):
     assert quiet_hello.process("talker").wait_exit(timeout=5) == 0
     assert quiet_hello.process("talker").output == ["Hello number 1"]
+
+
+def test_the_docs_show_this_file():
+    """docs/testing.md's complete example is this file, from ``import re`` to the line above
+    this test."""
+    from pathlib import Path
+
+    here = Path(__file__).read_text()
+    example = here[here.index("import re") : here.index("\n\n\ndef test_the_docs_show_this_file")]
+    docs = (Path(__file__).parents[2] / "docs" / "testing.md").read_text()
+    assert f"```python\n{example}\n```" in docs
