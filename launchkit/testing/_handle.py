@@ -126,11 +126,14 @@ class LaunchHandle:
                         event = json.loads(line)
                     except ValueError:
                         continue  # not ours; the launcher's output goes to its log file
-                    self.state.apply(event)
+                    if isinstance(event, dict):
+                        self.state.apply(event)
         except OSError:
             pass
-        self.state.close_channel()
-        self.state.launcher_exited(self._popen.wait())
+        finally:
+            # whatever happened, waits must learn that nothing more will come
+            self.state.close_channel()
+            self.state.launcher_exited(self._popen.wait())
 
     # -- readiness -----------------------------------------------------------------------------
 
