@@ -113,3 +113,13 @@ def test_a_respawning_process_may_die_without_failing_waits(launch):
     assert crasher.wait_exit(timeout=5) == 3
     assert handle.process("steady").wait_output("steady waiting", timeout=5)
     handle.stop().assert_exit_codes({"steady": 0, "crasher": 3})
+
+
+def test_an_error_while_running_ends_every_wait_with_launchkits_message(launch, launch_dir):
+    handle = launch("launch/timer_error.launch.xml")
+    with pytest.raises(ProcessDied) as caught:
+        handle.process("steady").wait_output("a line that never comes", timeout=60)
+    where = launch_dir / "timer_error.launch.xml"
+    error = f"{where}:7:19: error: command 'sh -c \"exit 4\"' failed with exit code 4"
+    assert f"the launch failed: {error}" in str(caught.value)
+    assert handle.stop().returncode == 1
