@@ -22,12 +22,13 @@ from launchkit.testing._errors import (
 )
 from launchkit.testing._factory import LaunchFactory
 from launchkit.testing._handle import LaunchHandle
-from launchkit.testing._matchers import Matcher
+from launchkit.testing._matchers import InOrder, Matcher, in_order
 from launchkit.testing._process import ProcessHandle
 from launchkit.testing._result import LaunchResult
 
 __all__ = [
     "ExitCodeMismatch",
+    "InOrder",
     "LaunchFactory",
     "LaunchFailed",
     "LaunchHandle",
@@ -38,4 +39,5 @@ __all__ = [
     "ProcessHandle",
     "ProcessLeftBehind",
     "WaitTimeout",
+    "in_order",
 ]

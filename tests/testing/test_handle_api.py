@@ -6,7 +6,7 @@ import re
 
 import pytest
 
-from launchkit.testing import LaunchTestError, ProcessDied, WaitTimeout
+from launchkit.testing import LaunchTestError, ProcessDied, WaitTimeout, in_order
 
 
 def test_waits_and_clean_stop(launch):
@@ -123,3 +123,12 @@ def test_an_error_while_running_ends_every_wait_with_launchkits_message(launch, 
     error = f"{where}:7:19: error: command 'sh -c \"exit 4\"' failed with exit code 4"
     assert f"the launch failed: {error}" in str(caught.value)
     assert handle.stop().returncode == 1
+
+
+def test_a_sequence_of_lines_is_awaited_in_order(launch):
+    talker = launch("launch/talker.launch.xml").process("talker")
+    assert talker.wait_output(in_order("hello 1", "hello 3", "waiting"), timeout=5) == (
+        "talker waiting"
+    )
+    with pytest.raises(WaitTimeout, match=r"containing 'waiting', then a line containing 'hello'"):
+        talker.wait_output(in_order("waiting", "hello"), timeout=0.2)

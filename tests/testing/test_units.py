@@ -7,7 +7,7 @@ import re
 import pytest
 
 from launchkit.runtime.events import node_name
-from launchkit.testing import LaunchResult
+from launchkit.testing import LaunchResult, in_order
 from launchkit.testing._matchers import compile_matcher
 from launchkit.testing._state import LaunchState
 
@@ -82,3 +82,18 @@ def test_exit_code_expectations():
     assert "sim: signal SIGINT, expected exit code 0" in str(caught.value)
     assert "crash: exit code 3, expected exit code 0" in str(caught.value)
     assert "talker" not in str(caught.value)
+
+
+def test_in_order_matches_a_sequence_with_lines_between():
+    accepts, words = compile_matcher(in_order("start", re.compile(r"^ready$")))
+    assert words == "a line containing 'start', then a line matching /^ready$/ (in this order)"
+    assert [accepts(line) for line in ["ready", "starting", "noise", "ready"]] == [
+        False,
+        False,
+        False,
+        True,
+    ]
+    fresh, _ = compile_matcher(in_order("start"))  # each compilation starts over
+    assert fresh("start")
+    with pytest.raises(ValueError, match="at least one matcher"):
+        in_order()
