@@ -81,8 +81,7 @@ class LaunchHandle:
             "ROS_LOG_DIR": str(log_dir / "ros"),
             "PYTHONUNBUFFERED": "1",
             **(env or {}),
-            ROUTER_ENV: self.router,
-            ROS_DOMAIN_ENV: str(self.domain_id),
+            **self.ros_env,
         }
         ours, theirs = socket.socketpair()
         fd = theirs.fileno()
@@ -115,6 +114,12 @@ class LaunchHandle:
 
     def __repr__(self) -> str:
         return f"<LaunchHandle {self.title} pid {self.pid}>"
+
+    @property
+    def ros_env(self) -> dict[str, str]:
+        """What a process needs in its environment to join this launch's ROS network (for
+        example ``launchkit topic echo`` run by the test with ``env={**os.environ, **ros_env}``)."""
+        return {ROUTER_ENV: self.router, ROS_DOMAIN_ENV: str(self.domain_id)}
 
     # -- the event channel ---------------------------------------------------------------------
 

@@ -25,6 +25,10 @@ def test_two_launches_in_parallel_stay_separate(launch):
     assert first.domain_id != second.domain_id
     assert first.process("env").pid != second.process("env").pid
     assert first.output.keys() == second.output.keys() == {"env-1"}
+    assert first.ros_env == {
+        "LAUNCHKIT_ROUTER": first.router,
+        "ROS_DOMAIN_ID": str(first.domain_id),
+    }
 
 
 @pytest.mark.parametrize("run", range(20))
