@@ -68,3 +68,18 @@ def describe_launch(state: LaunchState, launcher_log: Path, count: int = TAIL_LI
     parts.append(f"  launcher: {launcher}; log {launcher_log}")
     parts.extend(f"    | {line}" for line in tail(launcher_lines(launcher_log), count))
     return "\n".join(parts)
+
+
+def report_sections(
+    title: str, state: LaunchState, launcher_log: Path, notes: list[str], count: int
+) -> list[tuple[str, str]]:
+    """(title, text) per process and for the launcher, for a failing test's report: status,
+    command line and up to ``count`` lines each. Call with ``state.condition`` held."""
+    sections: list[tuple[str, str]] = []
+    for record in state.processes.values():
+        lines = [f"{process_status(record)}; cmd: {' '.join(record.cmd)}"]
+        lines += tail([f"[{line.stream}] {line.text}" for line in record.lines], count)
+        sections.append((f"{title}: {record.label}", "\n".join(lines)))
+    printed = tail(launcher_lines(launcher_log), count)
+    sections.append((f"{title}: launcher", "\n".join(notes + printed)))
+    return sections

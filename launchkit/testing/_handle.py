@@ -29,6 +29,7 @@ from launchkit.testing._evidence import (
     launcher_lines,
     process_status,
     process_title,
+    report_sections,
     tail,
 )
 from launchkit.testing._isolation import (
@@ -315,13 +316,7 @@ class LaunchHandle:
         self._reader.join(Deadline(_VANISH).seconds)
         self._channel.close()
         LIVE.discard(self)
-        groups = [self.pid, *state.all_pids()]
-        leftovers = _procscan.members(groups)
-        if leftovers:
-            leftovers = _procscan.wait_gone(leftovers, Deadline(_VANISH))
-        if leftovers:
-            _procscan.kill_groups(groups, signal.SIGKILL)
-            _procscan.wait_gone(leftovers, Deadline(_VANISH))
+        leftovers = _procscan.sweep([self.pid, *state.all_pids()], Deadline(_VANISH))
         self._result = self._make_result()
         return self._result, leftovers
 
@@ -340,17 +335,8 @@ class LaunchHandle:
 
     def _make_result(self) -> LaunchResult:
         with self.state.condition:
-            records = list(self.state.processes.values())
-            names = [record.name for record in records]
-            exit_codes = {
-                (record.name if names.count(record.name) == 1 else record.label): (
-                    None if record.running else record.returncode
-                )
-                for record in records
-            }
-            output = {r.label: [line.text for line in r.lines] for r in records}
             evidence = describe_launch(self.state, self.launcher_log)
-        return LaunchResult(exit_codes, self._popen.returncode, output, evidence)
+            return LaunchResult.of(self.state, self._popen.returncode, evidence)
 
     def kill(self) -> None:
         """SIGKILL the launch and everything it started at once (a backstop, not a stop)."""
@@ -360,15 +346,10 @@ class LaunchHandle:
 
     def report_sections(self) -> list[tuple[str, str]]:
         """(title, text) per process and for the launcher, for a failing test's report."""
-        sections: list[tuple[str, str]] = []
         with self.state.condition:
-            for record in self.state.processes.values():
-                lines = [f"{process_status(record)}; cmd: {' '.join(record.cmd)}"]
-                lines += tail([f"[{ln.stream}] {ln.text}" for ln in record.lines], _REPORT_LINES)
-                sections.append((f"{self.title}: {record.label}", "\n".join(lines)))
-        printed = tail(launcher_lines(self.launcher_log), _REPORT_LINES)
-        sections.append((f"{self.title}: launcher", "\n".join(self.stop_notes + printed)))
-        return sections
+            return report_sections(
+                self.title, self.state, self.launcher_log, self.stop_notes, _REPORT_LINES
+            )
 
 
 def format_items(target: str, file: str | None, args: Mapping[str, object] | None) -> list[str]:

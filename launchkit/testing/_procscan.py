@@ -127,3 +127,15 @@ def _poll_gone(processes: list[LiveProcess], deadline: Deadline) -> None:
 def _alive(pid: int) -> bool:
     stat = _read_stat(_PROC / str(pid))
     return stat is not None and stat[0] not in ("Z", "X")
+
+
+def sweep(groups: Collection[int], grace: Deadline) -> list[LiveProcess]:
+    """What is left of ``groups`` once ``grace`` has passed (processes already killed get that
+    long to go); those are SIGKILLed, and returned so the caller can report them."""
+    survivors = members(groups)
+    if survivors:
+        survivors = wait_gone(survivors, grace)
+    if survivors:
+        kill_groups(groups, signal.SIGKILL)
+        wait_gone(survivors, grace)
+    return survivors

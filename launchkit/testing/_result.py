@@ -7,6 +7,7 @@ from dataclasses import dataclass, field
 
 from launchkit.runtime.process import describe_exit
 from launchkit.testing._errors import ExitCodeMismatch
+from launchkit.testing._state import LaunchState
 
 ExpectedCodes = int | Collection[int]
 
@@ -23,6 +24,21 @@ class LaunchResult:
     returncode: int | None  # the launcher's own exit status
     output: dict[str, list[str]] = field(default_factory=dict)
     evidence: str = ""  # the processes and their last lines, for failure messages
+
+    @classmethod
+    def of(cls, state: LaunchState, returncode: int | None, evidence: str) -> LaunchResult:
+        """The result of a stopped launch (call with ``state.condition`` held). Exit codes are
+        keyed by process name, or by label where several processes share a name."""
+        records = list(state.processes.values())
+        names = [record.name for record in records]
+        exit_codes = {
+            (record.name if names.count(record.name) == 1 else record.label): (
+                None if record.running else record.returncode
+            )
+            for record in records
+        }
+        output = {record.label: [line.text for line in record.lines] for record in records}
+        return cls(exit_codes, returncode, output, evidence)
 
     def assert_exit_codes(self, expected: Mapping[str, ExpectedCodes]) -> None:
         """Check exit codes: ``{"talker": 0, "sim": {0, -2}, "*": 0}``.
