@@ -41,3 +41,10 @@ class Deadline:
     def expired(self) -> bool:
         """Whether the deadline has passed."""
         return time.monotonic() >= self._end
+
+    def renewed(self) -> Deadline:
+        """A deadline of the same (already scaled) length, starting now."""
+        fresh = Deadline.__new__(Deadline)
+        fresh.seconds = self.seconds
+        fresh._end = time.monotonic() + self.seconds
+        return fresh

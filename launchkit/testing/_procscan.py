@@ -137,5 +137,5 @@ def sweep(groups: Collection[int], grace: Deadline) -> list[LiveProcess]:
         survivors = wait_gone(survivors, grace)
     if survivors:
         kill_groups(groups, signal.SIGKILL)
-        wait_gone(survivors, grace)
+        wait_gone(survivors, grace.renewed())  # the grace above is spent: wait for the kill
     return survivors
