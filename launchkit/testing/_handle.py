@@ -229,7 +229,11 @@ class LaunchHandle:
                 try:
                     value = check()
                 except Impossible as why:
-                    raise ProcessDied(self._failure(what, f"{why} before it came")) from None
+                    # a launch error is the cause of whatever ended afterwards: name it first
+                    cause = self._problem() if state.errors else None
+                    raise ProcessDied(
+                        self._failure(what, cause or f"{why} before it came")
+                    ) from None
                 if value is not None:
                     return value
                 problem = self._problem()

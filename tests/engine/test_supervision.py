@@ -1,4 +1,7 @@
-"""Process tests of the supervisor: output, exit codes, signals, escalation, respawn, orphans.
+"""Process tests that act on the launcher itself: SIGINT/SIGTERM/SIGHUP to it, a second
+Ctrl-C, the launcher SIGKILLed, its exit status, its screen output and its run-time errors.
+They drive ``launchkit run`` directly (tests/engine/launcher.py) because the pytest plugin
+owns those signals; everything else is in test_processes.py, through the plugin.
 
 Synchronisation is on what the launcher prints (each wait has a deadline); no sleeps.
 """
@@ -57,7 +60,7 @@ def run(tmp_path: Path):  # type: ignore[no-untyped-def]
         wait_gone(list(launcher.pids.values()))
 
 
-def test_output_is_prefixed_and_in_order(run) -> None:  # type: ignore[no-untyped-def]
+def test_screen_output_is_prefixed_and_in_order(run) -> None:  # type: ignore[no-untyped-def]
     launcher = run(
         '<executable name="first" output="screen" cmd="echo one"/>\n'
         '<executable name="second" output="screen" cmd="sh -c \'echo two; exit 3\'"/>'
@@ -112,25 +115,6 @@ def test_signal_stops_everything(run, signum: int) -> None:  # type: ignore[no-u
     wait_gone([*launcher.pids.values(), grandchild])
 
 
-def test_escalation_sigint_then_sigterm_then_sigkill(run) -> None:  # type: ignore[no-untyped-def]
-    stubborn = IGNORE_SIGINT.format(extra="signal.signal(signal.SIGTERM, signal.SIG_IGN); ")
-    launcher = run(
-        executable("stubborn", stubborn, sigterm_timeout="0.3", sigkill_timeout="0.3")
-        + "\n"
-        + executable("polite", IGNORE_SIGINT.format(extra=""), sigterm_timeout="0.3")
-    )
-    launcher.wait_line("[stubborn-1] ready")
-    launcher.wait_line("[polite-2] ready")
-    launcher.signal(signal.SIGINT)
-    assert launcher.finish() == 0
-    text = launcher.text
-    assert "sending signal 'SIGTERM' to process[stubborn-1]" in text
-    assert "sending signal 'SIGKILL' to process[stubborn-1]" in text
-    assert "sending signal 'SIGTERM' to process[polite-2]" in text
-    assert "sending signal 'SIGKILL' to process[polite-2]" not in text
-    wait_gone(list(launcher.pids.values()))
-
-
 def test_second_ctrl_c_escalates_at_once(run) -> None:  # type: ignore[no-untyped-def]
     stubborn = IGNORE_SIGINT.format(extra="")
     launcher = run(executable("slow", stubborn, sigterm_timeout="60", sigkill_timeout="60"))
@@ -141,19 +125,6 @@ def test_second_ctrl_c_escalates_at_once(run) -> None:  # type: ignore[no-untype
     waiting = launcher.wait_line("waiting for")
     assert "slow-1" in waiting
     assert launcher.finish(timeout=20) == 0
-    wait_gone(list(launcher.pids.values()))
-
-
-def test_respawn_with_delay_and_max_retries(run) -> None:  # type: ignore[no-untyped-def]
-    launcher = run(
-        '<executable name="flaky" output="screen" respawn="true" respawn_delay="0.1" '
-        'respawn_max_retries="2" cmd="sh -c \'echo run; exit 1\'"/>\n'
-        '<executable name="keeper" cmd="sleep 30"/>'
-    )
-    launcher.wait_line("[flaky-1] run", count=3)
-    launcher.signal(signal.SIGINT)
-    assert launcher.finish() == 0
-    assert launcher.text.count("[flaky-1] run") == 3
     wait_gone(list(launcher.pids.values()))
 
 
@@ -170,46 +141,6 @@ def test_launcher_killed_with_sigkill_leaves_no_orphans(run) -> None:  # type: i
     os.kill(launcher.proc.pid, signal.SIGKILL)
     launcher.proc.wait(10)
     wait_gone([*children, grandchild])
-
-
-def test_output_modes_and_log_files(run, tmp_path: Path) -> None:  # type: ignore[no-untyped-def]
-    launcher = run(
-        '<executable name="quiet" cmd="echo to-the-log"/>\n'
-        '<executable name="both" output="both" cmd="echo to-both"/>\n'
-        '<executable name="own" output="own_log" cmd="sh -c \'echo out; echo err >&amp;2\'"/>'
-    )
-    assert launcher.finish() == 0
-    text = launcher.text
-    assert "to-the-log" not in text
-    assert "[both-2] to-both" in text
-    assert "[own-3]" not in text.replace("[INFO] [own-3]", "")
-    log_dirs = [p for p in tmp_path.iterdir() if p.is_dir()]
-    logs = {p.name: p.read_text() for d in log_dirs for p in d.rglob("*.log")}
-    assert any("to-the-log" in content for content in logs.values()), logs.keys()
-    assert any(name.startswith("own-3") and "out" in c for name, c in logs.items()), logs.keys()
-
-
-def test_timer_runs_after_its_period_with_output_in_order(run) -> None:  # type: ignore[no-untyped-def]
-    launcher = run(
-        executable("py", "import time; print('before', flush=True); time.sleep(300)")
-        + '\n<timer period="0.4"><log message="timer fired"/>'
-        '<executable name="late" output="screen" cmd="echo late"/></timer>'
-    )
-    launcher.wait_line("[py-1] before")
-    launcher.wait_line("timer fired")
-    launcher.wait_line("[late-2] late")
-    launcher.signal(signal.SIGINT)
-    assert launcher.finish() == 0
-
-
-def test_emulate_tty_gives_the_child_a_terminal(run) -> None:  # type: ignore[no-untyped-def]
-    probe = "import sys; print('tty' if sys.stdout.isatty() else 'pipe', flush=True)"
-    launcher = run(
-        executable("with", probe, emulate_tty="true") + "\n" + executable("without", probe)
-    )
-    assert launcher.finish() == 0
-    assert "[with-1] tty" in launcher.text
-    assert "[without-2] pipe" in launcher.text
 
 
 def test_failing_command_substitution_at_run_time_stops_everything(run, tmp_path) -> None:  # type: ignore[no-untyped-def]
