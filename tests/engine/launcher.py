@@ -143,3 +143,18 @@ def wait_gone(pids: list[int], timeout: float = 10.0) -> None:
     for pid in left:
         os.kill(pid, signal.SIGKILL)
     raise AssertionError(f"processes {left} survived (killed now)")
+
+
+def run_launchkit(
+    *args: str, cwd: Path, env: dict[str, str] | None = None
+) -> subprocess.CompletedProcess[str]:
+    """Run the launchkit command line to completion; its output captured."""
+    return subprocess.run(
+        [sys.executable, "-m", "launchkit", *args],
+        cwd=cwd,
+        capture_output=True,
+        text=True,
+        timeout=60,
+        check=False,
+        env={**os.environ, **(env or {})},
+    )

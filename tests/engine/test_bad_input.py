@@ -3,25 +3,13 @@ nothing started (each file begins with an executable that would leave a marker f
 
 from __future__ import annotations
 
-import subprocess
-import sys
 from pathlib import Path
 
 import pytest
 
+from tests.engine.launcher import run_launchkit as launchkit
+
 PROLOGUE = '<launch>\n  <executable cmd="touch {marker}"/>\n'
-
-
-def launchkit(*args: str, cwd: Path) -> subprocess.CompletedProcess[str]:
-    """Run the launchkit command line to completion."""
-    return subprocess.run(
-        [sys.executable, "-m", "launchkit", *args],
-        cwd=cwd,
-        capture_output=True,
-        text=True,
-        timeout=60,
-        check=False,
-    )
 
 
 CASES = {
