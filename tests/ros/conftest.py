@@ -9,11 +9,13 @@ import subprocess
 import sys
 import threading
 import time
-from collections.abc import Iterator
+from collections.abc import Callable, Iterator
 from pathlib import Path
 
 import pytest
 
+from launchkit.ros import Node, spin_once
+from launchkit.ros.context import Context
 from launchkit.ros.router import RouterHandle, start_router
 
 NODES_DIR = Path(__file__).parent / "nodes"
@@ -112,3 +114,30 @@ def children() -> Iterator[list[Child]]:
     finally:
         for child in started:
             child.stop()
+
+
+@pytest.fixture
+def contexts(router_endpoint: str) -> Iterator[Callable[[], Context]]:
+    """Make initialized contexts (each its own Zenoh session, like separate processes)."""
+    made: list[Context] = []
+
+    def make() -> Context:
+        context = Context()
+        context.init([])
+        made.append(context)
+        return context
+
+    try:
+        yield make
+    finally:
+        for context in made:
+            context.shutdown()
+
+
+def spin_until(node: Node, predicate: Callable[[], bool], timeout: float, what: str) -> None:
+    """Spin ``node`` until ``predicate()`` holds; fail naming ``what`` after ``timeout`` s."""
+    deadline = time.monotonic() + timeout
+    while not predicate():
+        if time.monotonic() > deadline:
+            raise AssertionError(f"timed out after {timeout} s waiting for {what}")
+        spin_once(node, timeout_sec=0.05)
