@@ -75,3 +75,18 @@ def test_missing_file_names_the_path(tmp_path: Path) -> None:
     with pytest.raises(UserError, match="cannot read the display config") as caught:
         load_config(tmp_path / "nope.rviz")
     assert str(tmp_path / "nope.rviz") in caught.value.format()
+
+
+def test_command_line_options_and_ros_args() -> None:
+    from launchkit.stock.rviz2.cli import parse_args
+
+    args = parse_args(["-d", "robot.rviz", "--ros-args", "-r", "__node:=viz", "--", "--port", "9"])
+    assert (args.display_config, args.port, args.fixed_frame) == (Path("robot.rviz"), 9, None)
+    assert parse_args(["-f", "odom"]).fixed_frame == "odom"
+
+
+def test_bad_option_is_a_user_error() -> None:
+    from launchkit.stock.rviz2.cli import parse_args
+
+    with pytest.raises(UserError, match="unrecognized arguments: --bogus"):
+        parse_args(["--bogus"])

@@ -15,7 +15,7 @@ from collections import deque
 from typing import Any
 
 import foxglove
-from foxglove.websocket import ChannelView, Client
+from foxglove.websocket import ChannelView, Client, ServerListener
 
 from launchkit.errors import UserError
 
@@ -109,7 +109,7 @@ class FoxgloveRelay:
             self._channels.clear()
 
 
-class _Listener(foxglove.ServerListener):
+class _Listener(ServerListener):
     """Re-sends latched topics on subscribe; the SDK wants on_unsubscribe defined too."""
 
     def __init__(self, relay: FoxgloveRelay) -> None:
