@@ -1,0 +1,1 @@
+"""Stand-ins for ROS packages, one subpackage each (executables and share files)."""
