@@ -1,0 +1,24 @@
+"""gazebo_ros stand-in: a PyBullet simulator server, ``spawn_entity.py`` and the diff drive node.
+
+The share directory holds ``launch/gazebo.launch.py`` (as gazebo_ros ships it) and ``worlds/``.
+See ``docs/simulation.md``.
+"""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+from launchkit.packages import PythonPackage
+
+SHARE = Path(__file__).resolve().parent / "share"
+
+PACKAGE = PythonPackage(
+    name="gazebo_ros",
+    share=SHARE,
+    executables={
+        "gzserver": "launchkit.stock.gazebo_ros.server",
+        "gazebo": "launchkit.stock.gazebo_ros.server",
+        "spawn_entity.py": "launchkit.stock.gazebo_ros.spawn_entity",
+        "diff_drive": "launchkit.stock.gazebo_ros.diff_drive_node",
+    },
+)

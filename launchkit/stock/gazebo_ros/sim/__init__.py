@@ -1,0 +1,1 @@
+"""The ROS-free simulation core: PyBullet world, URDF Gazebo extensions, sensors, pacing."""

@@ -1,0 +1,111 @@
+"""A spawned model's Gazebo plugins and sensors, turned into configured objects."""
+
+from __future__ import annotations
+
+from collections.abc import Callable
+from dataclasses import dataclass, field
+
+from launchkit.stock.gazebo_ros.diff_drive import DiffDriveParams, wheel_geometry_warnings
+from launchkit.stock.gazebo_ros.sim.engine import Entity, Simulation, SimulationError
+from launchkit.stock.gazebo_ros.sim.model import PluginSpec
+from launchkit.stock.gazebo_ros.sim.sensors import Camera, CameraConfig, Lidar, LidarConfig
+
+DIFF_DRIVE = "gazebo_ros_diff_drive"
+RAY_SENSOR = "gazebo_ros_ray_sensor"
+CAMERA = "gazebo_ros_camera"
+
+
+@dataclass
+class EntityPlugins:
+    """What runs for one entity: diff drives (configured, run elsewhere), lidars, cameras."""
+
+    diff_drives: list[tuple[PluginSpec, DiffDriveParams]] = field(default_factory=list)
+    lidars: list[Lidar] = field(default_factory=list)
+    cameras: list[Camera] = field(default_factory=list)
+
+    def poll_lidars(self, now: float) -> list[tuple[Lidar, list[float]]]:
+        """Scans of the lidars due at sim time ``now``."""
+        return [(lidar, lidar.scan()) for lidar in self.lidars if lidar.gate.due(now)]
+
+    def poll_cameras(
+        self, now: float, wanted: Callable[[CameraConfig], bool]
+    ) -> list[tuple[Camera, bytes]]:
+        """Frames of the cameras due at ``now`` that someone ``wanted`` (nobody: no rendering)."""
+        frames: list[tuple[Camera, bytes]] = []
+        for camera in self.cameras:
+            if camera.gate.due(now) and wanted(camera.config):
+                frames.append((camera, camera.render()))
+        return frames
+
+
+def load_plugins(sim: Simulation, entity: Entity, log: Callable[[str], None]) -> EntityPlugins:
+    """Configure ``entity``'s plugins; :class:`SimulationError` on an unusable block."""
+    found = EntityPlugins()
+    spec = entity.spec
+    for plugin in spec.plugins:
+        if plugin.library != DIFF_DRIVE:
+            log(f"plugin '{plugin.name}' ({plugin.filename}) is not simulated; ignored")
+            continue
+        try:
+            params = DiffDriveParams.from_tags(plugin.tags, _prefixed(log, plugin.name))
+        except ValueError as exc:
+            raise SimulationError(str(exc)) from None
+        _check_diff_drive(sim, entity, plugin, params, log)
+        found.diff_drives.append((plugin, params))
+    driven = {j for _, p in found.diff_drives for j in (p.left_joint, p.right_joint)}
+    if driven:
+        for joint in sim.set_passive_friction(entity, driven):
+            log(f"'{entity.name}': passive joint '{joint}' gets low friction (a caster)")
+    for sensor in spec.sensors:
+        libraries = {p.library for p in sensor.plugins}
+        try:
+            if sensor.type in ("ray", "gpu_ray") and RAY_SENSOR in libraries:
+                config = LidarConfig.from_sensor(sensor)
+                if config.output_type != "sensor_msgs/LaserScan":
+                    log(
+                        f"ray sensor '{sensor.name}': {config.output_type} not supported; LaserScan"
+                    )
+                found.lidars.append(Lidar(sim, entity, config))
+            elif sensor.type == "camera" and CAMERA in libraries:
+                found.cameras.append(Camera(sim, entity, CameraConfig.from_sensor(sensor, log)))
+            else:
+                log(f"sensor '{sensor.name}' (type {sensor.type}) has no ROS plugin; ignored")
+        except ValueError as exc:
+            raise SimulationError(str(exc)) from None
+        if sensor.link not in entity.links:
+            raise SimulationError(f"sensor '{sensor.name}' refers to unknown link '{sensor.link}'")
+    return found
+
+
+def _prefixed(log: Callable[[str], None], name: str) -> Callable[[str], None]:
+    return lambda message: log(f"diff drive '{name}': {message}")
+
+
+def _check_diff_drive(
+    sim: Simulation,
+    entity: Entity,
+    plugin: PluginSpec,
+    params: DiffDriveParams,
+    log: Callable[[str], None],
+) -> None:
+    for joint in (params.left_joint, params.right_joint):
+        if joint not in entity.joints:
+            raise SimulationError(
+                f"diff drive '{plugin.name}': joint '{joint}' not in model '{entity.name}'"
+            )
+    if params.robot_base_frame not in entity.links:
+        log(
+            f"diff drive '{plugin.name}': robot_base_frame '{params.robot_base_frame}' is not a "
+            f"link of '{entity.name}', so odom -> {params.robot_base_frame} is disconnected "
+            "from the robot's tf tree"
+        )
+    children = {index: name for name, index in entity.links.items()}
+    left_link = children[entity.joints[params.left_joint]]
+    right_link = children[entity.joints[params.right_joint]]
+    for warning in wheel_geometry_warnings(
+        sim.position_in_root(entity, left_link)[1],
+        sim.position_in_root(entity, right_link)[1],
+        sim.joint_axis_in_root(entity, params.left_joint),
+        sim.joint_axis_in_root(entity, params.right_joint),
+    ):
+        log(f"diff drive '{plugin.name}': {warning} (simulated as Gazebo does, not corrected)")
