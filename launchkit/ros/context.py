@@ -28,7 +28,8 @@ class NotInitializedError(RuntimeError):
 class Context:
     """One ROS context: its arguments, domain, Zenoh session and graph (both opened lazily)."""
 
-    def __init__(self) -> None:
+    def __init__(self, router: str | None = None) -> None:
+        self.router = router  # None: $LAUNCHKIT_ROUTER, else the default endpoint
         self._lock = threading.RLock()
         self._initialized = False
         self._interrupted = False
@@ -79,7 +80,7 @@ class Context:
         with self._lock:
             self.require()
             if self._session is None:
-                self._session = open_session(peer_config())
+                self._session = open_session(peer_config(self.router))
             return self._session
 
     @property

@@ -11,7 +11,7 @@ import sys
 import threading
 from collections.abc import Callable, Mapping
 from pathlib import Path
-from typing import TypeVar
+from typing import TYPE_CHECKING, Any, TypeVar
 
 from launchkit.runtime.network import ROUTER_ENV
 from launchkit.runtime.process import describe_exit
@@ -41,6 +41,9 @@ from launchkit.testing._isolation import (
 from launchkit.testing._process import Impossible, ProcessHandle
 from launchkit.testing._result import LaunchResult
 from launchkit.testing._state import LaunchState
+
+if TYPE_CHECKING:
+    from launchkit.testing._topics import TopicProbe
 
 T = TypeVar("T")
 
@@ -75,6 +78,7 @@ class LaunchHandle:
         self.router = router_endpoint(port)
         self.domain_id = domain_id()
         self.state = LaunchState()
+        self._probe: TopicProbe | None = None
         self.stop_notes: list[str] = []
         self._result: LaunchResult | None = None
         environment = {
@@ -272,6 +276,46 @@ class LaunchHandle:
 
     # -- stopping ------------------------------------------------------------------------------
 
+    def expect_topic(
+        self,
+        topic: str,
+        min_messages: int = 1,
+        within: float = 10.0,
+        where: Callable[[Any], bool] | None = None,
+    ) -> list[Any]:
+        """Wait up to ``within`` seconds for ``min_messages`` messages on ``topic`` (those for
+        which ``where(message)`` holds, when given) and return them.
+
+        The test process joins the launch's own ROS network for this; the subscription takes the
+        publisher's QoS, so a latched topic's last message counts. Raises :class:`WaitTimeout`
+        saying what arrived, or :class:`ProcessDied` at once if a process dies unexpectedly.
+        """
+        __tracebackhide__ = True
+        from launchkit.testing._topics import TopicProbe, TopicTimeout
+
+        what = f"{min_messages} message(s) on {topic}" + (
+            " matching the condition" if where else ""
+        )
+        if self._probe is None:
+            self._probe = TopicProbe(self.router, self.domain_id)
+
+        def check() -> None:
+            with self.state.condition:
+                problem = self._death(None) or self._problem()
+                if problem is not None:
+                    raise ProcessDied(self._failure(what, problem))
+
+        try:
+            return self._probe.expect(topic, min_messages, Deadline(within), where, check)
+        except TopicTimeout as why:
+            with self.state.condition:
+                raise WaitTimeout(self._failure(what, f"timed out: {why}")) from None
+
+    def _close_probe(self) -> None:
+        if self._probe is not None:
+            probe, self._probe = self._probe, None
+            probe.close()
+
     @property
     def stopped(self) -> bool:
         """Whether :meth:`stop` has run."""
@@ -299,6 +343,7 @@ class LaunchHandle:
         return result
 
     def _shutdown(self, timeout: float | None) -> tuple[LaunchResult, list[_procscan.LiveProcess]]:
+        self._close_probe()
         state = self.state
         with state.condition:
             state.stopping = True
