@@ -160,10 +160,13 @@ class ProcessHandle:
                 raise Impossible(f"process {record.label} {process_status(record)}{where}")
             return None
 
+        # Its own death does not fail the wait: a line it printed before dying still counts,
+        # and a line it never printed is reported by ``check`` as impossible.
         return self._launch.wait_for(
             f"{words} from process '{self.query}'{where}",
             timeout,
             check,
+            exempt=self.query,
         )
 
     def wait_exit(self, timeout: float = DEFAULT_TIMEOUT) -> int:
