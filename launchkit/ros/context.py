@@ -172,4 +172,11 @@ def _at_exit() -> None:
     close_all()
 
 
-atexit.register(_at_exit)
+# zenoh's callback threads are not daemons, and Python joins such threads *before* it runs
+# atexit handlers: a session left open (an advanced subscriber especially) would hang the exit.
+# threading's own exit hooks run before that join.
+_register = getattr(threading, "_register_atexit", None)
+if _register is not None:
+    _register(_at_exit)
+else:  # pragma: no cover - every supported Python has it
+    atexit.register(_at_exit)
