@@ -13,7 +13,17 @@ from typing import TYPE_CHECKING, Any
 
 from launchkit.ros.arguments import RosArguments, parse_ros_args
 from launchkit.ros.keyexpr import domain_id
-from launchkit.ros.session import close_all, close_session, open_session, peer_config
+from launchkit.ros.logging import get_logger
+from launchkit.ros.session import (
+    close_all,
+    close_session,
+    open_session,
+    peer_config,
+    router_endpoint,
+    wait_for_router,
+)
+
+ROUTER_WAIT = 2.0  # seconds a new session waits for the router before going on without it
 
 if TYPE_CHECKING:
     import zenoh
@@ -81,6 +91,11 @@ class Context:
             self.require()
             if self._session is None:
                 self._session = open_session(peer_config(self.router))
+                if not wait_for_router(self._session, ROUTER_WAIT):
+                    get_logger("launchkit.ros").warn(
+                        f"no ROS router answers at {router_endpoint(self.router)} yet; "
+                        "this node keeps trying to connect"
+                    )
             return self._session
 
     @property
@@ -158,4 +173,11 @@ def _at_exit() -> None:
     close_all()
 
 
-atexit.register(_at_exit)
+# zenoh's callback threads are not daemons, and Python joins such threads *before* it runs
+# atexit handlers: a session left open (an advanced subscriber especially) would hang the exit.
+# threading's own exit hooks run before that join.
+_register = getattr(threading, "_register_atexit", None)
+if _register is not None:
+    _register(_at_exit)
+else:  # pragma: no cover - every supported Python has it
+    atexit.register(_at_exit)

@@ -88,3 +88,14 @@ class Graph:
             self._subscriber.undeclare()
         except Exception:  # the session may already be closed
             pass
+
+
+def snapshot(session: zenoh.Session, domain: int, timeout: float = 2.0) -> list[Token]:
+    """Every token alive now, asked once (what the command-line tools list)."""
+    tokens: list[Token] = []
+    for reply in session.liveliness().get(f"{LIVELINESS_PREFIX}/{domain}/**", timeout=timeout):
+        if reply.ok is not None:
+            token = parse_token(str(reply.ok.key_expr))
+            if token is not None:
+                tokens.append(token)
+    return tokens

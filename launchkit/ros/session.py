@@ -11,6 +11,7 @@ from __future__ import annotations
 import json
 import os
 import threading
+import time
 from typing import Any, cast
 
 import zenoh
@@ -59,7 +60,7 @@ def _base_config(mode: str) -> zenoh.Config:
         "timestamping/enabled": True,
         # nodes must come back after the router restarts: retry quickly, never give up
         "connect/exit_on_failure": False,
-        "connect/timeout_ms": 0,
+        "connect/timeout_ms": -1,
         "connect/retry": {
             "period_init_ms": 50,
             "period_max_ms": 500,
@@ -105,6 +106,16 @@ def open_session(config: zenoh.Config) -> zenoh.Session:
     return session
 
 
+def wait_for_router(session: zenoh.Session, timeout: float) -> bool:
+    """Wait until ``session`` is connected to a router (the first queries need it)."""
+    deadline = time.monotonic() + timeout
+    while not any(True for _ in session.info.routers_zid()):
+        if time.monotonic() > deadline:
+            return False
+        time.sleep(0.001)
+    return True
+
+
 def close_session(session: zenoh.Session) -> None:
     """Close a session opened by :func:`open_session` (idempotent)."""
     with _sessions_lock:
@@ -123,4 +134,6 @@ def close_all() -> None:
             session.close()  # type: ignore[no-untyped-call]
 
 
-zenoh.init_log_from_env_or("error")
+# zenoh logs transient connection races (two peers dialing each other) at ERROR level; they
+# are harmless, so stay quiet unless the user asks with RUST_LOG
+zenoh.init_log_from_env_or("off")

@@ -39,6 +39,7 @@ _NUMPY_DTYPES: dict[str, Any] = {
 # Default values written in the .msg files (rosbags does not keep them); rclpy honours them.
 _MSG_DEFAULTS: dict[str, dict[str, Any]] = {
     "geometry_msgs/msg/Quaternion": {"w": 1.0},
+    "sensor_msgs/msg/NavSatStatus": {"status": -2},
 }
 
 _lock = threading.Lock()
@@ -187,6 +188,21 @@ def _make_rclpy_like(ts: Typestore, name: str) -> None:
             object.__setattr__(self, key, value)
 
         setattr(cls, "__setattr__", __setattr__)  # noqa: B010
+
+    def __eq__(self: Any, other: Any) -> bool:
+        # the dataclass __eq__ compares tuples, which numpy arrays make ambiguous
+        if other.__class__ is not self.__class__:
+            return NotImplemented
+        for fname in names:
+            mine, theirs = getattr(self, fname), getattr(other, fname)
+            if fname in arrays:
+                if not np.array_equal(mine, theirs):
+                    return False
+            elif mine != theirs:
+                return False
+        return True
+
+    setattr(cls, "__eq__", __eq__)  # noqa: B010
     short = name.rsplit("/", 1)[-1]
     cls.__name__ = short
     cls.__qualname__ = short

@@ -1,0 +1,65 @@
+"""``launchkit node list|info``: ros2 node's commands and output."""
+
+from __future__ import annotations
+
+import argparse
+from typing import Any
+
+from launchkit.ros.cli_common import (
+    CliUsageError,
+    add_router_option,
+    cli_node,
+    graph_tokens,
+    visible,
+)
+
+
+def add_parser(commands: Any) -> None:
+    """Register the ``node`` subcommands."""
+    node = commands.add_parser("node", help="nodes: list, info")
+    sub = node.add_subparsers(dest="verb", metavar="VERB", required=True)
+    p = sub.add_parser("list", help="list running nodes")
+    p.add_argument("-a", "--all", action="store_true", help="include hidden nodes")
+    add_router_option(p)
+    p.set_defaults(run=_list)
+    p = sub.add_parser("info", help="a node's publishers, subscriptions and services")
+    p.add_argument("node_name")
+    add_router_option(p)
+    p.set_defaults(run=_info)
+
+
+def _list(args: argparse.Namespace) -> int:
+    with cli_node(args) as node:
+        tokens = graph_tokens(node)
+    names = sorted({t.node_fqn for t in tokens if t.kind == "NN" and visible(t, args.all)})
+    for name in names:
+        print(name)
+    return 0
+
+
+_SECTIONS = (
+    ("Subscribers", "MS"),
+    ("Publishers", "MP"),
+    ("Service Servers", "SS"),
+    ("Service Clients", "SC"),
+)
+
+
+def _info(args: argparse.Namespace) -> int:
+    wanted = args.node_name if args.node_name.startswith("/") else "/" + args.node_name
+    with cli_node(args) as node:
+        tokens = [t for t in graph_tokens(node) if t.node_fqn == wanted]
+    if not any(t.kind == "NN" for t in tokens):
+        raise CliUsageError(
+            f"unknown node {wanted}", expected="a node listed by `launchkit node list`"
+        )
+    print(wanted)
+    for title, kind in _SECTIONS:
+        print(f"  {title}:")
+        entries = sorted({(t.topic, t.type_name) for t in tokens if t.kind == kind})
+        for name, type_name in entries:
+            print(f"    {name}: {type_name}")
+        if not entries:
+            print()
+    print("  Action Servers:\n\n  Action Clients:\n")
+    return 0

@@ -1,0 +1,118 @@
+"""``launchkit topic|node|service|param|interface`` against running node processes."""
+
+from __future__ import annotations
+
+import subprocess
+import sys
+
+import pytest
+from conftest import NODES_DIR, Child
+
+
+def launchkit(*args: str, timeout: float = 30) -> subprocess.CompletedProcess[str]:
+    """Run ``launchkit ARGS`` to completion."""
+    return subprocess.run(
+        [sys.executable, "-m", "launchkit", *args],
+        capture_output=True,
+        text=True,
+        timeout=timeout,
+    )
+
+
+@pytest.fixture
+def talker(router_endpoint: str, children: list[Child]) -> Child:
+    """A running talker node."""
+    child = Child([str(NODES_DIR / "talker.py")])
+    children.append(child)
+    child.expect("talker ready", timeout=15)
+    return child
+
+
+def test_topic_commands(talker: Child, children: list[Child]) -> None:
+    listed = launchkit("topic", "list", "-t")
+    assert listed.returncode == 0 and "/chatter [std_msgs/msg/String]" in listed.stdout
+    echo = launchkit("topic", "echo", "/chatter", "--once")
+    assert echo.returncode == 0, echo.stderr
+    assert echo.stdout.startswith("data: hello ") and echo.stdout.endswith("---\n")
+    info = launchkit("topic", "info", "/chatter")
+    assert "Type: std_msgs/msg/String" in info.stdout and "Publisher count: 1" in info.stdout
+
+    listener = Child([str(NODES_DIR / "listener.py")])
+    children.append(listener)
+    listener.expect("listener ready", timeout=15)
+    pub = launchkit(
+        "topic", "pub", "/chatter", "std_msgs/msg/String", "{data: from the cli}", "--once"
+    )
+    assert pub.returncode == 0, pub.stderr
+    assert "publishing #1: std_msgs.msg.String(data='from the cli')" in pub.stdout
+    listener.expect("heard: from the cli", timeout=10)
+
+
+def test_node_param_and_service_commands(talker: Child) -> None:
+    nodes = launchkit("node", "list")
+    assert nodes.stdout.split() == ["/talker"]
+    info = launchkit("node", "info", "/talker")
+    assert "  Publishers:\n    /chatter: std_msgs/msg/String" in info.stdout
+    assert launchkit("param", "list", "/talker").stdout == "/talker:\n  use_sim_time\n"
+    assert (
+        launchkit("param", "get", "/talker", "use_sim_time").stdout == "Boolean value is: False\n"
+    )
+    assert launchkit("param", "set", "/talker", "use_sim_time", "true").stdout == (
+        "Set parameter successful\n"
+    )
+    assert launchkit("param", "get", "talker", "use_sim_time").stdout == "Boolean value is: True\n"
+    wrong = launchkit("param", "set", "/talker", "use_sim_time", "5")
+    assert wrong.returncode == 1 and "Setting parameter failed" in wrong.stdout
+    call = launchkit(
+        "service",
+        "call",
+        "/talker/get_parameters",
+        "rcl_interfaces/srv/GetParameters",
+        "{names: [use_sim_time]}",
+    )
+    assert call.returncode == 0, call.stderr
+    assert "response:\nrcl_interfaces.srv.GetParameters_Response(values=[" in call.stdout
+    assert "bool_value=True" in call.stdout
+
+
+@pytest.mark.parametrize(
+    ("args", "message"),
+    [
+        (["topic", "pub", "/x", "std_msgs/msg/Strin", "{data: a}"], "unknown message type"),
+        (["topic", "pub", "/x", "std_msgs/msg/String", "{dat: a}"], "has no field 'dat'"),
+        (
+            ["topic", "pub", "/x", "geometry_msgs/msg/Twist", "{linear: {x: fast}}"],
+            "expected a number",
+        ),
+        (["topic", "pub", "/x", "std_msgs/msg/String", "{data: [1"], "not valid YAML"),
+        (["topic", "echo", "/nothing", "--timeout", "0.3"], "could not determine the type"),
+        (["node", "info", "/nobody"], "unknown node /nobody"),
+        (["param", "get", "/nobody", "x"], "unknown node /nobody"),
+        (["topic", "list", "--router", "nonsense"], "invalid router endpoint"),
+    ],
+)
+def test_bad_input_is_one_line_and_exit_2(
+    router_endpoint: str, args: list[str], message: str
+) -> None:
+    result = launchkit(*args)
+    assert result.returncode == 2, result.stderr
+    assert message in result.stderr
+    assert "Traceback" not in result.stderr
+    assert result.stderr.startswith("error: ")
+
+
+def test_interface_show() -> None:
+    twist = launchkit("interface", "show", "geometry_msgs/msg/Twist")
+    assert twist.stdout.startswith("Vector3  linear\n\tfloat64 x\n")
+    srv = launchkit("interface", "show", "gazebo_msgs/srv/DeleteEntity")
+    assert srv.stdout == "string name\n---\nbool success\nstring status_message\n"
+    bad = launchkit("interface", "show", "nope_msgs/msg/X")
+    assert bad.returncode == 2 and "unknown message type" in bad.stderr
+
+
+def test_without_a_router_the_command_says_so(monkeypatch: pytest.MonkeyPatch) -> None:
+    from conftest import free_port
+
+    monkeypatch.setenv("LAUNCHKIT_ROUTER", f"tcp/127.0.0.1:{free_port()}")
+    result = launchkit("topic", "list")
+    assert result.returncode == 1 and "no ROS router answers" in result.stderr
