@@ -1,4 +1,4 @@
-"""Start the simulator server, as gazebo_ros's gazebo.launch.py does (launchkit's PyBullet stand-in).
+"""Start the simulator server as gazebo_ros's gazebo.launch.py does (PyBullet in place of Gazebo).
 
 Arguments (gazebo_ros's names): world, verbose, pause, init, factory, gui, plus
 real_time_factor. One difference: ``gui`` defaults to false here (the server is headless unless a
