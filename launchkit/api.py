@@ -13,6 +13,7 @@ from launchkit.description.context import LaunchContext, Runtime
 from launchkit.errors import PackageNotFoundError
 from launchkit.frontend.xml_parser import XmlParser
 from launchkit.packages import PackageIndex
+from launchkit.runtime.hooks import SupervisorHooks
 
 
 def resolve_launch_file(target: str, filename: str | None, packages: PackageIndex) -> Path:
@@ -101,7 +102,7 @@ def describe(path: Path, arguments: Mapping[str, str] | None = None) -> str:
 
 def show_arguments(path: Path) -> str:
     """The arguments ``path`` declares, with defaults, descriptions and choices."""
-    description = check(path).top
+    description = check_tree(path, None, XmlParser(), PackageIndex()).top
     lines = ["Arguments (pass arguments as '<name>:=<value>'):"]
     declared = description.declared_arguments()
     if not declared:
@@ -126,10 +127,12 @@ def run(
     *,
     stream: IO[str] | None = None,
     router: str | None = None,
+    hooks: SupervisorHooks | None = None,
 ) -> int:
     """Run ``path`` until everything it started has stopped; the exit status.
 
     User mistakes found before anything starts raise :class:`launchkit.errors.UserError`.
+    ``hooks`` observes the launch as it runs (the test plugin's event channel uses it).
     """
     from launchkit.runtime.logdir import create_run_dir
     from launchkit.runtime.network import NodeNetwork
@@ -150,7 +153,7 @@ def run(
             f"argument '{name}' is not declared or used by "
             f"{path.name} (or the files it includes statically)",
         )
-    supervisor = Supervisor(output, network=NodeNetwork(router))
+    supervisor = Supervisor(output, network=NodeNetwork(router), hooks=hooks)
     context = _context(supervisor, arguments, packages, parser, run_dir)
     try:
         return supervisor.run(tree.top, context)

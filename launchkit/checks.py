@@ -12,6 +12,7 @@ from collections.abc import Mapping
 from pathlib import Path
 
 from launchkit.description.actions import DeclareArgument, Include
+from launchkit.description.actions.base import Action
 from launchkit.description.launch_description import LaunchDescription, walk
 from launchkit.description.substitutions import (
     Dirname,
@@ -23,7 +24,7 @@ from launchkit.description.substitutions import (
     Var,
 )
 from launchkit.description.substitutions.base import literal
-from launchkit.errors import LaunchArgumentError, PackageNotFoundError
+from launchkit.errors import LaunchArgumentError, LaunchFileError, PackageNotFoundError
 from launchkit.frontend.xml_parser import XmlParser
 from launchkit.packages import PackageIndex
 
@@ -54,11 +55,12 @@ def parse_launch_arguments(items: list[str]) -> dict[str, str]:
 
 def check_tree(
     path: Path,
-    arguments: Mapping[str, str],
+    arguments: Mapping[str, str] | None,
     parser: XmlParser,
     packages: PackageIndex,
 ) -> CheckedTree:
-    """Parse ``path`` and its static includes and check ``arguments``; raise on the first error."""
+    """Parse ``path`` and its static includes and check ``arguments`` (unless None, as for
+    ``--show-args``); raise on the first error."""
     tree = CheckedTree(parser.load(path))
     pending = [tree.top]
     while pending:
@@ -67,13 +69,38 @@ def check_tree(
             if not isinstance(action, Include):
                 continue
             included = static_path(action, description.path, packages)
-            if included is None or included in tree.files or not included.is_file():
+            if included is None or included in tree.files:
                 continue
+            if not included.is_file():
+                if _always_runs(action, description):
+                    raise LaunchFileError(
+                        f"included launch file '{included}' does not exist",
+                        action.location,
+                        expected="a path to a launch file",
+                    )
+                continue  # conditional: reported if and when the include runs
             child = parser.load(included, action.location)
             tree.files[included] = child
             pending.append(child)
-    check_arguments(tree.top, arguments)
+    if arguments is not None:
+        check_arguments(tree.top, arguments)
     return tree
+
+
+def _always_runs(target: Action, description: LaunchDescription) -> bool:
+    """Whether ``target`` sits under no ``if``/``unless`` (itself included)."""
+
+    def search(actions: list[Action], guarded: bool) -> bool | None:
+        for action in actions:
+            here = guarded or action.condition is not None
+            if action is target:
+                return not here
+            found = search(list(action.children()), here)
+            if found is not None:
+                return found
+        return None
+
+    return bool(search(description.actions, False))
 
 
 def static_path(include: Include, current: Path, packages: PackageIndex) -> Path | None:

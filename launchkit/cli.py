@@ -11,8 +11,12 @@ import argparse
 import os
 import sys
 from pathlib import Path
+from typing import TYPE_CHECKING
 
 from launchkit.errors import LaunchkitError, UserError
+
+if TYPE_CHECKING:
+    from launchkit.runtime.hooks import SupervisorHooks
 
 ROS_COMMANDS = ("topic", "node", "service", "param", "interface", "router")
 
@@ -62,6 +66,8 @@ def build_parser() -> argparse.ArgumentParser:
         help='show every process\'s output on the screen (output="both")',
     )
     run.add_argument("--router", help="Zenoh router endpoint to host or join (tcp/HOST:PORT)")
+    # launchkit.testing's event channel (launchkit/runtime/events.py): not for people
+    run.add_argument("--events-fd", type=int, help=argparse.SUPPRESS)
     commands.add_parser(
         "check",
         help="validate a launch file and run nothing",
@@ -121,14 +127,39 @@ def _ros_command(command: str, argv: list[str]) -> int:
 
 
 def _dispatch(args: argparse.Namespace) -> int:
-    from launchkit import api
-    from launchkit.checks import parse_launch_arguments
     from launchkit.packages import PackageIndex
 
     if args.command == "pkg":
         return _pkg(args, PackageIndex())
     if args.command == "exec":
         return _exec(args, PackageIndex())
+    if getattr(args, "events_fd", None) is not None:
+        return _run_with_events(args, args.events_fd)
+    return _launch(args)
+
+
+def _run_with_events(args: argparse.Namespace, fd: int) -> int:
+    """``launchkit run`` that also streams its events to a test process (launchkit.testing)."""
+    from launchkit.runtime.events import EventWriter
+
+    try:
+        events = EventWriter.from_fd(fd)
+    except OSError as error:
+        raise UserError(f"--events-fd {fd}: {error.strerror}", expected="an open socket") from None
+    try:
+        return _launch(args, events)
+    except LaunchkitError as error:
+        events.launch_failed(error.format())
+        raise
+    finally:
+        events.close()
+
+
+def _launch(args: argparse.Namespace, hooks: SupervisorHooks | None = None) -> int:
+    from launchkit import api
+    from launchkit.checks import parse_launch_arguments
+    from launchkit.packages import PackageIndex
+
     files = [i for i in args.items if ":=" not in i]
     if files and Path(files[0]).is_file() and args.items[0] == files[0]:
         files = files[:1]  # FILE then arguments: anything else is a malformed argument
@@ -153,7 +184,7 @@ def _dispatch(args: argparse.Namespace) -> int:
     if args.show_all_subprocesses_output:
         os.environ["OVERRIDE_LAUNCH_PROCESS_OUTPUT"] = "both"
     try:
-        return api.run(path, arguments, router=args.router)
+        return api.run(path, arguments, router=args.router, hooks=hooks)
     except LaunchkitError as error:
         error.exit_status = 2  # raised before anything started: the input is at fault
         raise

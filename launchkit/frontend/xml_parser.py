@@ -31,13 +31,19 @@ class XmlParser:
         cached = self._cache.get(path)
         if cached is not None:
             return cached
+        if path.suffix == ".py" and path.is_file():
+            from launchkit.frontend.python_launch import load_python_launch
+
+            description = load_python_launch(path, included_from)
+            self._cache[path] = description
+            return description
         if path.suffix not in XML_SUFFIXES:
             raise LaunchFileError(
                 f"cannot read launch file '{path.name}'",
                 included_from or Location(str(path)),
-                expected="an XML launch file (*.launch.xml, *.xml, *.launch)",
-                hint="Python and YAML launch files are not supported; launchkit provides XML "
-                "equivalents of its stock packages' launch files",
+                expected="an XML launch file (*.launch.xml, *.xml, *.launch) "
+                "or a Python one (*.launch.py)",
+                hint="YAML launch files are not supported",
             )
         try:
             text = path.read_text()

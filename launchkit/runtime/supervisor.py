@@ -19,6 +19,7 @@ from typing import TYPE_CHECKING
 
 from launchkit.description.process import ProcessSpec
 from launchkit.errors import LaunchFileError, LaunchkitError
+from launchkit.runtime.hooks import SupervisorHooks
 from launchkit.runtime.orphan_guard import OrphanGuard
 from launchkit.runtime.output import Output
 from launchkit.runtime.process import ManagedProcess, State, describe_exit
@@ -43,8 +44,10 @@ class Supervisor:
         *,
         network: NodeNetwork | None = None,
         clock: Callable[[], float] = time.monotonic,
+        hooks: SupervisorHooks | None = None,
     ) -> None:
         self.output = output
+        self.hooks = hooks or SupervisorHooks()
         self.network = network
         self.clock = clock
         self.processes: list[ManagedProcess] = []
@@ -97,6 +100,7 @@ class Supervisor:
         previous = self._install_signals()
         try:
             self._first_pass(description, context)
+            self.hooks.launch_ready()
             self._loop()
         finally:
             self._finish()
@@ -177,6 +181,7 @@ class Supervisor:
     def fail(self, error: LaunchkitError) -> None:
         """An error while running: report it where it happened and shut down, exit 1."""
         self.output.launch_line("ERROR", "launch", error.format())
+        self.hooks.launch_error(error.format())
         self.exit_code = self.exit_code or 1
         self.begin_shutdown("an error occurred", level="ERROR")
 
@@ -200,11 +205,9 @@ class Supervisor:
         except OSError as error:
             process.state = State.FAILED
             where = f" ({process.spec.location})" if process.spec.location else ""
-            self.log(
-                "ERROR",
-                process.label,
-                f"could not start process: {error.strerror}: '{process.spec.cmd[0]}'{where}",
-            )
+            message = f"could not start process: {error.strerror}: '{process.spec.cmd[0]}'{where}"
+            self.log("ERROR", process.label, message)
+            self.hooks.launch_error(f"{process.label}: {message}")
             self.exit_code = self.exit_code or 1
             self.begin_shutdown("a process could not be started", level="ERROR")
             return
@@ -219,6 +222,7 @@ class Supervisor:
             )
         else:
             self._needs_polling = True
+        self.hooks.process_started(process)
         if self.on_started is not None:
             self.on_started(process)
 
@@ -227,6 +231,7 @@ class Supervisor:
         kind = process.streams[fd].kind
         for line in lines:
             self.output.child_line(process.label, process.index, line, process.spec.output, kind)
+            self.hooks.process_output(process, kind, line)
         if eof:
             self._selector.unregister(fd)
             process.close_stream(fd)
@@ -246,6 +251,7 @@ class Supervisor:
         process.state = State.EXITED
         process.escalation_at = None
         self._report_exit(process, code, stopping)
+        self.hooks.process_exited(process, code)
         if _group_exists(process.pid):
             if self.shutting_down:
                 process.kill_leftovers()
@@ -296,6 +302,7 @@ class Supervisor:
             return
         self.shutting_down = True
         self.log(level, "launch", reason)
+        self.hooks.shutdown(reason)
         self._timers = [t for t in self._timers if not t[2].cancel_on_shutdown]
         heapq.heapify(self._timers)
         for process in self.processes:

@@ -11,8 +11,6 @@ import os
 from dataclasses import dataclass
 from typing import TYPE_CHECKING, Any
 
-import yaml
-
 from launchkit.description.actions.base import Action
 from launchkit.description.actions.executable import ProcessBuilder, ProcessOptions
 from launchkit.description.actions.parameters import (
@@ -93,6 +91,8 @@ class Node(Action):
         return spec
 
     def _ros_arguments(self, context: LaunchContext) -> tuple[list[str], dict[str, str]]:
+        import yaml  # lazily: most launches never need it
+
         out: list[str] = []
         files: dict[str, str] = {}
         if self.ros_args is not None:

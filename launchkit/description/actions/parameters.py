@@ -6,8 +6,6 @@ from dataclasses import dataclass, field
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
-import yaml
-
 from launchkit.description.substitutions.base import Value, perform
 from launchkit.errors import Location, RuntimeLaunchError
 
@@ -60,6 +58,8 @@ ParamEntry = ParamValue | ParamGroup | ParamFile
 
 def typed_value(text: str, kind: str | None, location: Location | None) -> Any:
     """``text`` converted as ROS does: YAML inference unless ``type`` says otherwise."""
+    import yaml  # lazily: most launches never need it
+
     try:
         if kind == "str":
             return text
@@ -86,6 +86,8 @@ def typed_value(text: str, kind: str | None, location: Location | None) -> Any:
 
 def evaluate_value(param: ParamValue, context: LaunchContext) -> Any:
     """The typed value of one ``<param>``."""
+    import yaml  # lazily: most launches never need it
+
     text = perform(param.value, context)
     if param.sep is not None or (param.type or "").startswith("list_of_"):
         item_type = (param.type or "").removeprefix("list_of_") or None

@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import shlex
 from typing import TYPE_CHECKING
 
 from launchkit.description.substitutions.base import Call
@@ -44,7 +45,11 @@ class FindPkgPrefix(Call):
 
 
 class ExecInPkg(Call):
-    """Path of executable EXE of package PKG."""
+    """Path of executable EXE of package PKG.
+
+    For a Python package's executable there is no file to point at: the result is its command
+    line (``PYTHON -m MODULE``), which a shell or ``$(command)`` runs as is.
+    """
 
     NAME = "exec-in-pkg"
     MIN_ARGS = 2
@@ -54,6 +59,7 @@ class ExecInPkg(Call):
     def perform(self, context: LaunchContext) -> str:
         """The executable's path, or an error naming what is missing."""
         try:
-            return context.packages.executable(self.arg(1, context), self.arg(0, context))[0]
+            argv = context.packages.executable(self.arg(1, context), self.arg(0, context))
+            return argv[0] if len(argv) == 1 else shlex.join(argv)
         except PackageNotFoundError as error:
             raise error.with_location(self.location) if self.location else error from None

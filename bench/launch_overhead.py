@@ -1,0 +1,189 @@
+"""Benchmark: what the launch engine costs (run by hand; results go in docs/benchmarks.md).
+
+    python bench/launch_overhead.py [--repeat 5]
+
+Measures, each as the median of --repeat runs, beside a baseline measured in the same run:
+  * `launchkit run` of an empty launch file vs starting the Python interpreter;
+  * N = 1, 10, 100 short processes (`true`) run to completion vs a plain Popen/wait loop;
+  * SIGINT to exit with 10 sleeping children;
+  * parse + check of a 1000-entity file in-process (ROS 2 launch: 1.6 s on this machine);
+  * the launcher's peak RSS with 100 children.
+"""
+
+from __future__ import annotations
+
+import argparse
+import datetime
+import os
+import platform
+import signal
+import statistics
+import subprocess
+import sys
+import tempfile
+import time
+from collections.abc import Callable
+from pathlib import Path
+
+LAUNCHKIT = [sys.executable, "-m", "launchkit"]
+
+
+def median_time(action: Callable[[], object], repeat: int) -> float:
+    """Median wall time of ``action`` in seconds."""
+    samples = []
+    for _ in range(repeat):
+        start = time.perf_counter()
+        action()
+        samples.append(time.perf_counter() - start)
+    return statistics.median(samples)
+
+
+def write(directory: Path, name: str, body: str) -> Path:
+    """A launch file with ``body`` inside <launch>."""
+    path = directory / name
+    path.write_text(f"<launch>\n{body}\n</launch>\n")
+    return path
+
+
+def run_quiet(argv: list[str], env: dict[str, str]) -> None:
+    """Run to completion, output discarded, failing loudly."""
+    subprocess.run(argv, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL, env=env, check=True)
+
+
+def launch_times(path: Path, count: int, env: dict[str, str]) -> tuple[float, float]:
+    """Seconds from spawning ``launchkit run`` to its ``count``-th "process started" line, and
+    to its exit."""
+    start = time.perf_counter()
+    proc = subprocess.Popen(
+        [*LAUNCHKIT, "run", str(path)], stdout=subprocess.PIPE, text=True, env=env
+    )
+    assert proc.stdout is not None
+    started, all_started = 0, 0.0
+    for line in proc.stdout:
+        if "process started with pid" in line:
+            started += 1
+            if started == count:
+                all_started = time.perf_counter() - start
+    proc.wait()
+    return all_started, time.perf_counter() - start
+
+
+def popen_times(count: int) -> tuple[float, float]:
+    """The floor: ``count`` plain Popen calls of ``echo hi``, then waiting for them all."""
+    start = time.perf_counter()
+    procs = [subprocess.Popen(["echo", "hi"], stdout=subprocess.DEVNULL) for _ in range(count)]
+    all_started = time.perf_counter() - start
+    for proc in procs:
+        proc.wait()
+    return all_started, time.perf_counter() - start
+
+
+def shutdown_time(path: Path, env: dict[str, str]) -> float:
+    """Seconds from SIGINT to the launcher's exit, once its 10 children have started."""
+    proc = subprocess.Popen(
+        [*LAUNCHKIT, "run", str(path)], stdout=subprocess.PIPE, text=True, env=env
+    )
+    assert proc.stdout is not None
+    started = 0
+    for line in proc.stdout:
+        if "process started with pid" in line:
+            started += 1
+            if started == 10:
+                break
+    start = time.perf_counter()
+    proc.send_signal(signal.SIGINT)
+    proc.communicate(timeout=30)
+    return time.perf_counter() - start
+
+
+def peak_rss_mb(path: Path, env: dict[str, str]) -> float:
+    """Peak RSS of a launcher running ``path`` (from its own getrusage, via a wrapper)."""
+    code = (
+        "import resource, runpy, sys; sys.argv = ['launchkit', 'run', sys.argv[1]];\n"
+        "try:\n    runpy.run_module('launchkit', run_name='__main__')\n"
+        "except SystemExit:\n    pass\n"
+        "print('RSS', resource.getrusage(resource.RUSAGE_SELF).ru_maxrss, file=sys.stderr)"
+    )
+    result = subprocess.run(
+        [sys.executable, "-c", code, str(path)],
+        capture_output=True,
+        text=True,
+        env=env,
+        check=True,
+    )
+    line = [x for x in result.stderr.splitlines() if x.startswith("RSS")][-1]
+    return int(line.split()[1]) / 1024
+
+
+def main() -> None:
+    """Run every measurement and print one line each."""
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("--repeat", type=int, default=5)
+    repeat = parser.parse_args().repeat
+    print(
+        f"machine: {platform.node()} {platform.machine()} {os.cpu_count()} cores, "
+        f"Python {platform.python_version()}; {datetime.date.today()}"
+    )
+    with tempfile.TemporaryDirectory() as tmp:
+        directory = Path(tmp)
+        env = {**os.environ, "ROS_LOG_DIR": str(directory / "log")}
+        empty = write(directory, "empty.launch.xml", "")
+        baseline = median_time(lambda: run_quiet([sys.executable, "-c", "pass"], env), repeat)
+        empty_t = median_time(lambda: run_quiet([*LAUNCHKIT, "run", str(empty)], env), repeat)
+        print(
+            f"empty launch file: {empty_t * 1000:.0f} ms (python -c pass: "
+            f"{baseline * 1000:.0f} ms; ros2 launch measured 240 ms fixed cost)"
+        )
+        for n in (1, 10, 100):
+            path = write(directory, f"n{n}.launch.xml", '<executable cmd="echo hi"/>\n' * n)
+            runs = [launch_times(path, n, env) for _ in range(repeat)]
+            started = statistics.median(r[0] for r in runs)
+            finished = statistics.median(r[1] for r in runs)
+            floor = [popen_times(n) for _ in range(repeat)]
+            floor_started = statistics.median(f[0] for f in floor)
+            floor_finished = statistics.median(f[1] for f in floor)
+            print(
+                f"{n:>3} x echo: all started {started * 1000:.0f} ms, all exited "
+                f"{finished * 1000:.0f} ms (Popen loop: {floor_started * 1000:.1f} ms / "
+                f"{floor_finished * 1000:.1f} ms); beyond the empty launch: "
+                f"{(started - empty_t) * 1000:.0f} ms to start them all"
+            )
+        sleepers = write(directory, "sleepers.launch.xml", '<executable cmd="sleep 60"/>\n' * 10)
+        stop = statistics.median(shutdown_time(sleepers, env) for _ in range(repeat))
+        print(f"SIGINT to exit with 10 children: {stop * 1000:.0f} ms")
+
+        from launchkit.checks import check_tree
+        from launchkit.frontend.xml_parser import XmlParser
+        from launchkit.packages import PackageIndex
+
+        body = "\n".join(
+            f'<group if="$(var on)"><let name="v{i}" value="$(var base)-{i}"/>'
+            f'<executable cmd="echo $(var v{i}) \'$(env HOME)\'" name="p{i}" output="screen"/>'
+            "</group>"
+            for i in range(334)
+        )
+        big = write(
+            directory,
+            "big.launch.xml",
+            '<arg name="on" default="true"/><arg name="base" default="b"/>\n' + body,
+        )
+        check = median_time(lambda: check_tree(big, {}, XmlParser(), PackageIndex()), repeat)
+        entities = check_tree(big, {}, XmlParser(), PackageIndex()).entity_count
+        print(
+            f"parse + check {entities} entities: {check * 1000:.1f} ms "
+            "(ros2 launch measured 1600 ms for 1000)"
+        )
+        hundred = write(directory, "sleep100.launch.xml", '<executable cmd="sleep 0.5"/>\n' * 100)
+        print(f"launcher peak RSS with 100 children: {peak_rss_mb(hundred, env):.1f} MB")
+        imports = median_time(
+            lambda: run_quiet([sys.executable, "-c", "import launchkit.api, launchkit.cli"], env),
+            repeat,
+        )
+        print(
+            f"python -c 'import launchkit.api, launchkit.cli': {imports * 1000:.0f} ms "
+            f"(python -c pass: {baseline * 1000:.0f} ms)"
+        )
+
+
+if __name__ == "__main__":
+    main()

@@ -1,0 +1,15 @@
+"""Python launch files (``*.launch.py``) written against ROS 2's ``launch`` / ``launch_ros`` API.
+
+launchkit does not ship ROS's launch engine. Instead it runs the file's
+``generate_launch_description()`` with small stand-in modules named ``launch``,
+``launch.actions``, ``launch_ros.actions``, ... whose classes build launchkit's own description
+objects, so an included ``gazebo.launch.py`` runs through the same supervisor, checks and
+errors as XML. Only the declarative part of the API is covered (see ``api.py``); anything else
+(``OpaqueFunction``, event handlers) is a clear error naming the file and line.
+"""
+
+from __future__ import annotations
+
+from launchkit.frontend.python_launch.loader import load_python_launch
+
+__all__ = ["load_python_launch"]

@@ -1,0 +1,442 @@
+"""Stand-ins for the classes of ROS 2's ``launch`` package that launch files construct.
+
+Each action class *is* the matching launchkit action (a thin subclass whose constructor takes
+the ROS keyword arguments), so the loaded file needs no translation step afterwards.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Iterable, Mapping
+from pathlib import Path
+from typing import Any
+
+from launchkit.description import actions as lk
+from launchkit.description.actions.base import Action
+from launchkit.description.conditions import Condition
+from launchkit.description.context import LaunchContext
+from launchkit.description.process import ProcessSpec
+from launchkit.description.substitutions import And as AndSub
+from launchkit.description.substitutions import Anon as AnonSub
+from launchkit.description.substitutions import (
+    AnyOf,
+    Command,
+    Dirname,
+    Env,
+    Equals,
+    Eval,
+    Filename,
+    FindExec,
+    Not,
+    NotEquals,
+    Text,
+    Var,
+)
+from launchkit.description.substitutions import Or as OrSub
+from launchkit.description.substitutions.base import Substitution, perform
+from launchkit.frontend.python_launch.values import (
+    SubstitutionLike,
+    here,
+    optional_value,
+    to_value,
+)
+
+# -- the description ---------------------------------------------------------------------------
+
+
+class LaunchDescription:
+    """``launch.LaunchDescription``: the list of actions ``generate_launch_description`` returns."""
+
+    def __init__(self, initial_entities: Iterable[Action] | None = None) -> None:
+        self.entities: list[Action] = list(initial_entities or [])
+
+    def add_action(self, action: Action) -> None:
+        """Append one action."""
+        self.entities.append(action)
+
+    add_entity = add_action
+
+
+# -- conditions --------------------------------------------------------------------------------
+
+
+def _condition(value: Any, negate: bool) -> Condition:
+    return Condition(to_value(value), negate, here())
+
+
+def IfCondition(predicate_expression: Any) -> Condition:
+    """``launch.conditions.IfCondition``."""
+    return _condition(predicate_expression, False)
+
+
+def UnlessCondition(predicate_expression: Any) -> Condition:
+    """``launch.conditions.UnlessCondition``."""
+    return _condition(predicate_expression, True)
+
+
+def LaunchConfigurationEquals(name: str, expected_value: Any) -> Condition:
+    """``launch.conditions.LaunchConfigurationEquals``."""
+    test = Equals([(Var([to_value(name)]),), to_value(expected_value)])
+    return Condition((test,), False, here())
+
+
+def LaunchConfigurationNotEquals(name: str, expected_value: Any) -> Condition:
+    """``launch.conditions.LaunchConfigurationNotEquals``."""
+    test = NotEquals([(Var([to_value(name)]),), to_value(expected_value)])
+    return Condition((test,), False, here())
+
+
+# -- substitutions -----------------------------------------------------------------------------
+
+
+class LaunchConfiguration(SubstitutionLike):
+    """``launch.substitutions.LaunchConfiguration``."""
+
+    def __init__(self, variable_name: Any, *, default: Any = None) -> None:
+        args = [to_value(variable_name)] + ([to_value(default)] if default is not None else [])
+        super().__init__(Var(args, here()))
+
+
+class EnvironmentVariable(SubstitutionLike):
+    """``launch.substitutions.EnvironmentVariable``."""
+
+    def __init__(self, name: Any, *, default_value: Any = None) -> None:
+        args = [to_value(name)] + ([to_value(default_value)] if default_value is not None else [])
+        super().__init__(Env(args, here()))
+
+
+class TextSubstitution(SubstitutionLike):
+    """``launch.substitutions.TextSubstitution``."""
+
+    def __init__(self, *, text: str) -> None:
+        super().__init__(Text(text))
+
+
+class PythonExpression(SubstitutionLike):
+    """``launch.substitutions.PythonExpression`` (evaluated in ``$(eval)``'s math-only sandbox)."""
+
+    def __init__(self, expression: Any) -> None:
+        super().__init__(Eval([to_value(expression)], here()))
+
+
+class PathJoinSubstitution(SubstitutionLike):
+    """``launch.substitutions.PathJoinSubstitution``."""
+
+    def __init__(self, substitutions: Iterable[Any]) -> None:
+        parts: list[Any] = []
+        for index, item in enumerate(substitutions):
+            if index:
+                parts.append("/")
+            parts.append(item)
+        super().__init__(_Joined(to_value(parts)))
+
+
+class _Joined(Substitution):
+    """A concatenation behaving as one substitution (what PathJoinSubstitution yields)."""
+
+    def __init__(self, value: tuple[Any, ...]) -> None:
+        self.value = value
+
+    def perform(self, context: LaunchContext) -> str:
+        """The parts performed and joined."""
+        return perform(self.value, context)
+
+    def describe(self) -> str:
+        """The parts, described."""
+        return "".join(part.describe() for part in self.value)
+
+
+class Command_(SubstitutionLike):
+    """``launch.substitutions.Command``."""
+
+    def __init__(self, command: Any, *, on_stderr: str = "fail") -> None:
+        super().__init__(Command([_argv_text(command), to_value(on_stderr)], here()))
+
+
+class FindExecutable(SubstitutionLike):
+    """``launch.substitutions.FindExecutable``."""
+
+    def __init__(self, *, name: Any) -> None:
+        super().__init__(FindExec([to_value(name)], here()))
+
+
+class ThisLaunchFileDir(SubstitutionLike):
+    """``launch.substitutions.ThisLaunchFileDir``."""
+
+    def __init__(self) -> None:
+        super().__init__(Dirname([], here()))
+
+
+class ThisLaunchFile(SubstitutionLike):
+    """``launch.substitutions.ThisLaunchFile``."""
+
+    def __init__(self) -> None:
+        super().__init__(Filename([], here()))
+
+
+class AnonName(SubstitutionLike):
+    """``launch.substitutions.AnonName``."""
+
+    def __init__(self, name: Any) -> None:
+        super().__init__(AnonSub([to_value(name)], here()))
+
+
+class NotSubstitution(SubstitutionLike):
+    """``launch.substitutions.NotSubstitution``."""
+
+    def __init__(self, value: Any) -> None:
+        super().__init__(Not([to_value(value)], here()))
+
+
+class AndSubstitution(SubstitutionLike):
+    """``launch.substitutions.AndSubstitution``."""
+
+    def __init__(self, left: Any, right: Any) -> None:
+        super().__init__(AndSub([to_value(left), to_value(right)], here()))
+
+
+class OrSubstitution(SubstitutionLike):
+    """``launch.substitutions.OrSubstitution``."""
+
+    def __init__(self, left: Any, right: Any) -> None:
+        super().__init__(OrSub([to_value(left), to_value(right)], here()))
+
+
+class AnySubstitution(SubstitutionLike):
+    """``launch.substitutions.AnySubstitution``."""
+
+    def __init__(self, *args: Any) -> None:
+        super().__init__(AnyOf([to_value(a) for a in args], here()))
+
+
+class EqualsSubstitution(SubstitutionLike):
+    """``launch.substitutions.EqualsSubstitution``."""
+
+    def __init__(self, left: Any, right: Any) -> None:
+        super().__init__(Equals([to_value(left), to_value(right)], here()))
+
+
+def _argv_text(items: Any) -> tuple[Any, ...]:
+    """A command given as a list of words, as one command-line value (each word quoted)."""
+    if isinstance(items, str | SubstitutionLike):
+        return to_value(items)
+    parts: list[Any] = []
+    for index, item in enumerate(items):
+        parts.extend([" " if index else "", "'", item, "'"])
+    return to_value(parts)
+
+
+# -- actions -----------------------------------------------------------------------------------
+
+
+class DeclareLaunchArgument(lk.DeclareArgument):
+    """``launch.actions.DeclareLaunchArgument``."""
+
+    def __init__(
+        self,
+        name: str,
+        *,
+        default_value: Any = None,
+        description: str | None = None,
+        choices: Iterable[str] | None = None,
+        condition: Condition | None = None,
+    ) -> None:
+        super().__init__(
+            name,
+            optional_value(default_value),
+            description or "",
+            tuple(choices or ()),
+            here(),
+            condition,
+        )
+
+
+class SetLaunchConfiguration(lk.SetConfiguration):
+    """``launch.actions.SetLaunchConfiguration``."""
+
+    def __init__(self, name: Any, value: Any, *, condition: Condition | None = None) -> None:
+        super().__init__(to_value(name), to_value(value), here(), condition)
+
+
+class LaunchDescriptionSource:
+    """``launch.launch_description_sources.*LaunchDescriptionSource``: where a file is."""
+
+    def __init__(self, launch_description_source: Any) -> None:
+        self.location = to_value(launch_description_source)
+
+
+class IncludeLaunchDescription(lk.Include):
+    """``launch.actions.IncludeLaunchDescription``."""
+
+    def __init__(
+        self,
+        launch_description_source: LaunchDescriptionSource | str,
+        *,
+        launch_arguments: Mapping[str, Any] | Iterable[tuple[str, Any]] | None = None,
+        condition: Condition | None = None,
+    ) -> None:
+        source = (
+            launch_description_source.location
+            if isinstance(launch_description_source, LaunchDescriptionSource)
+            else to_value(launch_description_source)
+        )
+        pairs = (
+            launch_arguments.items()
+            if isinstance(launch_arguments, Mapping)
+            else (launch_arguments or [])
+        )
+        args = [lk.IncludeArg(str(name), to_value(value)) for name, value in pairs]
+        super().__init__(source, args, here(), condition)
+
+
+def process_options(
+    *,
+    cwd: Any = None,
+    name: Any = None,
+    prefix: Any = None,
+    output: Any = None,
+    shell: bool | None = None,
+    emulate_tty: bool | None = None,
+    sigterm_timeout: Any = None,
+    sigkill_timeout: Any = None,
+    respawn: Any = None,
+    respawn_delay: Any = None,
+    respawn_max_retries: Any = None,
+    additional_env: Mapping[Any, Any] | None = None,
+    env: Mapping[Any, Any] | None = None,
+    on_exit: Any = None,
+) -> lk.ProcessOptions:
+    """The process keyword arguments ExecuteProcess and Node share, as ProcessOptions."""
+    if on_exit is not None and not isinstance(on_exit, str | list | SubstitutionLike):
+        on_exit = "shutdown" if type(on_exit).__name__ == "Shutdown" else on_exit
+    environment = [
+        (to_value(k), to_value(v)) for k, v in {**(env or {}), **(additional_env or {})}.items()
+    ]
+    return lk.ProcessOptions(
+        cwd=optional_value(cwd),
+        name=optional_value(name),
+        launch_prefix=optional_value(prefix),
+        output=optional_value(output),
+        shell=optional_value(shell),
+        emulate_tty=optional_value(emulate_tty),
+        sigterm_timeout=optional_value(sigterm_timeout),
+        sigkill_timeout=optional_value(sigkill_timeout),
+        respawn=optional_value(respawn),
+        respawn_delay=optional_value(respawn_delay),
+        respawn_max_retries=optional_value(respawn_max_retries),
+        on_exit=optional_value(on_exit),
+        env=environment,
+    )
+
+
+class ExecuteProcess(lk.ExecuteProcess):
+    """``launch.actions.ExecuteProcess``: ``cmd`` is a list of words; empty words are dropped,
+    as ROS does, so ``PythonExpression`` can switch a flag off by yielding ''."""
+
+    def __init__(
+        self, *, cmd: Iterable[Any], condition: Condition | None = None, **options: Any
+    ) -> None:
+        words = list(cmd)
+        self.words = [to_value(word) for word in words]
+        super().__init__(_argv_text(words), process_options(**options), here(), condition)
+
+    def evaluate(self, context: LaunchContext) -> ProcessSpec:
+        """The process, its argv built word by word."""
+        from launchkit.description.actions.executable import ProcessBuilder
+
+        builder = ProcessBuilder(self.options, context, self.location)
+        words = [w for w in (perform(word, context) for word in self.words) if w != ""]
+        if builder.flag(self.options.shell, False, "shell"):
+            text = " ".join(words)
+            return builder.build(["/bin/sh", "-c", text], words[0] if words else "sh", False)
+        return builder.build(words, words[0] if words else "", False)
+
+
+class GroupAction(lk.Group):
+    """``launch.actions.GroupAction``."""
+
+    def __init__(
+        self,
+        actions: Iterable[Action],
+        *,
+        scoped: bool = True,
+        forwarding: bool = True,
+        launch_configurations: Mapping[Any, Any] | None = None,
+        condition: Condition | None = None,
+    ) -> None:
+        keeps = [
+            lk.Keep(to_value(k), to_value(v)) for k, v in (launch_configurations or {}).items()
+        ]
+        super().__init__(list(actions), scoped, forwarding, keeps, here(), condition)
+
+
+class LogInfo(lk.Log):
+    """``launch.actions.LogInfo``."""
+
+    def __init__(self, *, msg: Any, condition: Condition | None = None) -> None:
+        super().__init__(to_value(msg), "INFO", here(), condition)
+
+
+class TimerAction(lk.Timer):
+    """``launch.actions.TimerAction``."""
+
+    def __init__(
+        self,
+        *,
+        period: Any,
+        actions: Iterable[Action],
+        cancel_on_shutdown: bool = True,
+        condition: Condition | None = None,
+    ) -> None:
+        super().__init__(to_value(period), list(actions), cancel_on_shutdown, here(), condition)
+
+
+class SetEnvironmentVariable(lk.SetEnv):
+    """``launch.actions.SetEnvironmentVariable``."""
+
+    def __init__(self, name: Any, value: Any, *, condition: Condition | None = None) -> None:
+        super().__init__(to_value(name), to_value(value), here(), condition)
+
+
+class UnsetEnvironmentVariable(lk.UnsetEnv):
+    """``launch.actions.UnsetEnvironmentVariable``."""
+
+    def __init__(self, name: Any, *, condition: Condition | None = None) -> None:
+        super().__init__(to_value(name), here(), condition)
+
+
+class AppendEnvironmentVariable(lk.AppendEnv):
+    """``launch.actions.AppendEnvironmentVariable``."""
+
+    def __init__(
+        self,
+        name: Any,
+        value: Any,
+        *,
+        prepend: bool = False,
+        separator: Any = None,
+        condition: Condition | None = None,
+    ) -> None:
+        super().__init__(
+            to_value(name), to_value(value), prepend, optional_value(separator), here(), condition
+        )
+
+
+class Shutdown(lk.Shutdown):
+    """``launch.actions.Shutdown``."""
+
+    def __init__(self, *, reason: Any = None, condition: Condition | None = None) -> None:
+        super().__init__(to_value(reason), here(), condition)
+
+
+def package_path(name: str) -> Path:
+    """``ament_index_python.packages.get_package_share_directory`` through launchkit's index."""
+    from launchkit.errors import PackageNotFoundError
+    from launchkit.packages import PackageIndex
+
+    try:
+        return PackageIndex().share_dir(name)
+    except PackageNotFoundError as error:
+        location = here()
+        if error.location is None and location is not None:
+            raise error.with_location(location) from None
+        raise

@@ -1,0 +1,125 @@
+"""launchkit.ros: an rclpy-like ROS 2 node API over Zenoh, with the real ROS 2 message types.
+
+::
+
+    import launchkit.ros as ros
+    from launchkit.ros.msgs.std_msgs.msg import String
+
+    ros.init()
+    node = ros.Node("talker")
+    pub = node.create_publisher(String, "chatter", 10)
+    node.create_timer(0.5, lambda: pub.publish(String(data="hello")))
+    ros.spin(node)
+    ros.shutdown()
+
+Nodes connect to the Zenoh router at ``$LAUNCHKIT_ROUTER`` (default tcp/127.0.0.1:7447, the one
+``launchkit run`` hosts) and follow rmw_zenoh's wire conventions.
+"""
+
+from __future__ import annotations
+
+from launchkit.ros.clock import Clock, ClockType, Duration, ROSClock, Time
+from launchkit.ros.context import Context, NotInitializedError, default_context
+from launchkit.ros.context import install_signal_handlers as _install_signal_handlers
+from launchkit.ros.executor import (
+    Executor,
+    MultiThreadedExecutor,
+    SingleThreadedExecutor,
+    spin,
+    spin_once,
+    spin_until_future_complete,
+)
+from launchkit.ros.logging import LoggingSeverity, get_logger
+from launchkit.ros.node import Node
+from launchkit.ros.node_params import (
+    InvalidParameterTypeException,
+    ParameterAlreadyDeclaredException,
+    ParameterNotDeclaredException,
+    SetParametersResult,
+)
+from launchkit.ros.params import Parameter, ParameterType
+from launchkit.ros.qos import (
+    DurabilityPolicy,
+    HistoryPolicy,
+    QoSProfile,
+    ReliabilityPolicy,
+    qos_profile_sensor_data,
+    qos_profile_system_default,
+)
+from launchkit.ros.task import Future
+
+QoSDurabilityPolicy = DurabilityPolicy
+QoSReliabilityPolicy = ReliabilityPolicy
+QoSHistoryPolicy = HistoryPolicy
+
+
+def init(
+    args: list[str] | None = None, *, context: Context | None = None, domain_id: int | None = None
+) -> None:
+    """Initialize ROS for this process: parse ``--ros-args`` of ``args`` (default sys.argv).
+
+    Installs SIGINT/SIGTERM handlers (main thread only) that shut down the default context,
+    which makes ``spin`` return so that the node exits promptly.
+    """
+    (context or default_context).init(args, domain_id)
+    if context is None or context is default_context:
+        _install_signal_handlers()
+
+
+def ok(*, context: Context | None = None) -> bool:
+    """True between ``init()`` and ``shutdown()`` (a SIGINT shuts down)."""
+    return (context or default_context).ok()
+
+
+def shutdown(*, context: Context | None = None) -> None:
+    """Destroy every entity and close the Zenoh session (safe to call twice)."""
+    (context or default_context).shutdown()
+
+
+try_shutdown = shutdown
+
+
+def create_node(node_name: str, **kwargs: object) -> Node:
+    """rclpy's ``create_node``: same as ``Node(node_name, ...)``."""
+    return Node(node_name, **kwargs)  # type: ignore[arg-type]
+
+
+__all__ = [
+    "Clock",
+    "ClockType",
+    "Context",
+    "DurabilityPolicy",
+    "Duration",
+    "Executor",
+    "Future",
+    "HistoryPolicy",
+    "InvalidParameterTypeException",
+    "LoggingSeverity",
+    "MultiThreadedExecutor",
+    "Node",
+    "NotInitializedError",
+    "Parameter",
+    "ParameterAlreadyDeclaredException",
+    "ParameterNotDeclaredException",
+    "ParameterType",
+    "QoSDurabilityPolicy",
+    "QoSHistoryPolicy",
+    "QoSProfile",
+    "QoSReliabilityPolicy",
+    "ROSClock",
+    "ReliabilityPolicy",
+    "SetParametersResult",
+    "SingleThreadedExecutor",
+    "Time",
+    "create_node",
+    "get_logger",
+    "init",
+    "ok",
+    "qos_profile_sensor_data",
+    "qos_profile_system_default",
+    "shutdown",
+    "spin",
+    "spin_once",
+    "spin_until_future_complete",
+    "try_shutdown",
+]

@@ -1,0 +1,161 @@
+"""The process's ROS context: command-line arguments, the Zenoh session, init/ok/shutdown."""
+
+from __future__ import annotations
+
+import atexit
+import signal
+import sys
+import threading
+import weakref
+from collections.abc import Callable
+from types import FrameType
+from typing import TYPE_CHECKING, Any
+
+from launchkit.ros.arguments import RosArguments, parse_ros_args
+from launchkit.ros.keyexpr import domain_id
+from launchkit.ros.session import close_all, close_session, open_session, peer_config
+
+if TYPE_CHECKING:
+    import zenoh
+
+    from launchkit.ros.graph import Graph
+
+
+class NotInitializedError(RuntimeError):
+    """A ROS entity was used before ``init()`` or after ``shutdown()``."""
+
+
+class Context:
+    """One ROS context: its arguments, domain, Zenoh session and graph (both opened lazily)."""
+
+    def __init__(self, router: str | None = None) -> None:
+        self.router = router  # None: $LAUNCHKIT_ROUTER, else the default endpoint
+        self._lock = threading.RLock()
+        self._initialized = False
+        self._interrupted = False
+        self._shutdown_callbacks: list[Callable[[], None]] = []
+        self._session: zenoh.Session | None = None
+        self._graph: Graph | None = None
+        self._next_id = 0
+        self.argv: list[str] = []
+        self.ros_args = RosArguments()
+        self.domain_id = 0
+        self._nodes: weakref.WeakSet[Any] = weakref.WeakSet()
+
+    def init(self, args: list[str] | None = None, domain: int | None = None) -> None:
+        """Parse ``--ros-args`` and mark the context usable (the session opens on first use)."""
+        with self._lock:
+            if self._initialized:
+                raise RuntimeError("launchkit.ros.init() was already called for this context")
+            self.argv = list(sys.argv if args is None else args)
+            self.ros_args = parse_ros_args(self.argv)
+            self.domain_id = domain_id() if domain is None else domain
+            self._interrupted = False
+            self._initialized = True
+
+    def ok(self) -> bool:
+        """True between ``init()`` and ``shutdown()``."""
+        return self._initialized and not self._interrupted
+
+    def interrupt(self) -> None:
+        """Make ``ok()`` false and wake every spinner, tearing nothing down.
+
+        Safe in a signal handler: the entities are destroyed later by ``shutdown()`` in the
+        thread that owns them (or at exit), never under a running callback.
+        """
+        self._interrupted = True
+        for node in list(self._nodes):
+            node._wake()
+
+    def require(self) -> None:
+        """Raise :class:`NotInitializedError` unless the context is usable."""
+        if not self._initialized:
+            raise NotInitializedError(
+                "launchkit.ros is not initialized: call launchkit.ros.init() first"
+            )
+
+    @property
+    def session(self) -> zenoh.Session:
+        """The context's Zenoh session (opened on first use, connected to the router)."""
+        with self._lock:
+            self.require()
+            if self._session is None:
+                self._session = open_session(peer_config(self.router))
+            return self._session
+
+    @property
+    def graph(self) -> Graph:
+        """The ROS graph as seen through liveliness tokens (started on first use)."""
+        with self._lock:
+            if self._graph is None:
+                from launchkit.ros.graph import Graph
+
+                self._graph = Graph(self.session, self.domain_id)
+            return self._graph
+
+    def next_entity_id(self) -> int:
+        """A fresh id for a node or entity (unique in this context)."""
+        with self._lock:
+            self._next_id += 1
+            return self._next_id
+
+    def add_node(self, node: Any) -> None:
+        """Track ``node`` so shutdown can wake its executor."""
+        self._nodes.add(node)
+
+    def on_shutdown(self, callback: Callable[[], None]) -> None:
+        """Call ``callback`` when the context shuts down."""
+        self._shutdown_callbacks.append(callback)
+
+    def shutdown(self) -> None:
+        """Stop everything: wake spinners, undeclare entities, close the session. Idempotent."""
+        with self._lock:
+            if not self._initialized:
+                return
+            self._initialized = False
+            callbacks, self._shutdown_callbacks = self._shutdown_callbacks, []
+            nodes = list(self._nodes)
+        for node in nodes:
+            node._wake()
+        for callback in callbacks:
+            callback()
+        for node in nodes:
+            node._close_entities()
+        with self._lock:
+            if self._graph is not None:
+                self._graph.close()
+                self._graph = None
+            if self._session is not None:
+                close_session(self._session)
+                self._session = None
+
+
+default_context = Context()
+_signals_installed = False
+_interrupts = 0
+
+
+def _on_signal(signum: int, frame: FrameType | None) -> None:
+    global _interrupts
+    _interrupts += 1
+    if _interrupts > 1:
+        raise KeyboardInterrupt
+    default_context.interrupt()
+
+
+def install_signal_handlers() -> None:
+    """SIGINT/SIGTERM shut the default context down (spin returns); a second one interrupts."""
+    global _signals_installed
+    if _signals_installed or threading.current_thread() is not threading.main_thread():
+        return
+    signal.signal(signal.SIGINT, _on_signal)
+    signal.signal(signal.SIGTERM, _on_signal)
+    _signals_installed = True
+
+
+def _at_exit() -> None:
+    default_context.shutdown()
+    close_all()
+
+
+atexit.register(_at_exit)

@@ -1,0 +1,169 @@
+"""Executors: run subscription, service and timer callbacks in the thread that spins.
+
+Zenoh delivers samples on its own threads; they only put work on the node's queue. The spinning
+thread takes work from the queue and runs due timers, so user callbacks never run concurrently.
+"""
+
+from __future__ import annotations
+
+import queue
+import time
+from collections.abc import Callable
+from typing import TYPE_CHECKING, Any
+
+from launchkit.ros.context import Context, default_context
+
+if TYPE_CHECKING:
+    from launchkit.ros.node import Node
+    from launchkit.ros.timer import Timer
+
+Work = tuple[Callable[..., Any], tuple[Any, ...]]
+_WAKE: Work = (lambda: None, ())
+_MAX_WAIT = 1.0  # re-check timers at least this often (a sim clock may have been switched on)
+
+
+class WorkQueue:
+    """The queue zenoh threads fill and the spinning thread drains."""
+
+    def __init__(self) -> None:
+        self._queue: queue.SimpleQueue[Work] = queue.SimpleQueue()
+        self.put = self._queue.put
+
+    def get(self, timeout: float | None) -> Work | None:
+        """The next work item, or None after ``timeout`` seconds (0 polls)."""
+        try:
+            if timeout is not None and timeout <= 0:
+                return self._queue.get_nowait()
+            return self._queue.get(timeout=timeout)
+        except queue.Empty:
+            return None
+
+    def wake(self) -> None:
+        """Make a blocked ``get`` return."""
+        self._queue.put(_WAKE)
+
+
+class Executor:
+    """Runs the callbacks of the nodes added to it, one at a time, in the spinning thread."""
+
+    def __init__(self, *, context: Context | None = None) -> None:
+        self.context = context or default_context
+        self._nodes: list[Node] = []
+        self._work = WorkQueue()
+
+    def add_node(self, node: Node) -> bool:
+        """Add ``node``; its pending work moves to this executor."""
+        if node in self._nodes:
+            return False
+        self._nodes.append(node)
+        old = node._work
+        node._work = self._work
+        while (item := old.get(0)) is not None:
+            self._work.put(item)
+        return True
+
+    def remove_node(self, node: Node) -> None:
+        """Stop running ``node``'s callbacks here (it gets its own queue back)."""
+        if node in self._nodes:
+            self._nodes.remove(node)
+            node._work = WorkQueue()
+
+    def get_nodes(self) -> list[Node]:
+        """The nodes this executor runs."""
+        return list(self._nodes)
+
+    def _timers(self) -> list[Timer]:
+        return [t for node in self._nodes for t in node._timers]
+
+    def spin_once(self, timeout_sec: float | None = None) -> None:
+        """Run one ready callback, waiting at most ``timeout_sec`` (None: until one is ready)."""
+        deadline = None if timeout_sec is None else time.monotonic() + timeout_sec
+        while self.context.ok():
+            timer, wait = self._next_timer()
+            if timer is not None and wait <= 0:
+                timer._fire()
+                return
+            remaining = None if deadline is None else deadline - time.monotonic()
+            if remaining is not None:
+                wait = min(wait, remaining) if timer is not None else remaining
+            elif timer is None:
+                wait = _MAX_WAIT
+            item = self._work.get(max(0.0, min(wait, _MAX_WAIT)))
+            if item is not None:
+                if item is not _WAKE:
+                    item[0](*item[1])
+                    return
+            if remaining is not None and remaining <= 0:
+                return
+
+    def _next_timer(self) -> tuple[Timer | None, float]:
+        best: Timer | None = None
+        best_ns = 0
+        for timer in self._timers():
+            remaining = timer.time_until_next_call()
+            if remaining is None:
+                continue
+            if timer.clock.ros_time_is_active:
+                # sim time advances only with /clock messages, which arrive as work: wait for them
+                if remaining > 0:
+                    continue
+            if best is None or remaining < best_ns:
+                best, best_ns = timer, remaining
+        return best, best_ns / 1e9
+
+    def spin(self) -> None:
+        """Run callbacks until the context shuts down."""
+        while self.context.ok():
+            self.spin_once(None)
+
+    def spin_until_future_complete(self, future: Any, timeout_sec: float | None = None) -> None:
+        """Run callbacks until ``future`` is done (or timeout, or shutdown)."""
+        deadline = None if timeout_sec is None else time.monotonic() + timeout_sec
+        while self.context.ok() and not future.done():
+            remaining = None if deadline is None else deadline - time.monotonic()
+            if remaining is not None and remaining <= 0:
+                return
+            self.spin_once(remaining if remaining is not None else 0.1)
+
+    def wake(self) -> None:
+        """Make a blocked ``spin_once`` look again (shutdown, new timer)."""
+        self._work.wake()
+
+    def shutdown(self, timeout_sec: float | None = None) -> bool:
+        """Forget the nodes."""
+        for node in list(self._nodes):
+            self.remove_node(node)
+        return True
+
+
+class SingleThreadedExecutor(Executor):
+    """rclpy's name for the executor above."""
+
+
+MultiThreadedExecutor = SingleThreadedExecutor  # callbacks still run one at a time
+
+
+def spin_once(
+    node: Node, *, executor: Executor | None = None, timeout_sec: float | None = None
+) -> None:
+    """Run at most one of ``node``'s ready callbacks, waiting up to ``timeout_sec``."""
+    _executor_for(node, executor).spin_once(timeout_sec)
+
+
+def spin(node: Node, executor: Executor | None = None) -> None:
+    """Run ``node``'s callbacks until shutdown (SIGINT shuts down and makes this return)."""
+    _executor_for(node, executor).spin()
+
+
+def spin_until_future_complete(
+    node: Node, future: Any, executor: Executor | None = None, timeout_sec: float | None = None
+) -> None:
+    """Run ``node``'s callbacks until ``future`` is done."""
+    _executor_for(node, executor).spin_until_future_complete(future, timeout_sec)
+
+
+def _executor_for(node: Node, executor: Executor | None) -> Executor:
+    if executor is not None:
+        executor.add_node(node)
+        return executor
+    return node._own_executor()

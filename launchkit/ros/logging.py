@@ -1,0 +1,149 @@
+"""Node loggers with ROS's levels, output shape and ``--log-level``."""
+
+from __future__ import annotations
+
+import enum
+import os
+import sys
+import threading
+import time
+from typing import Any, TextIO
+
+
+class LoggingSeverity(enum.IntEnum):
+    """rcutils severities."""
+
+    UNSET = 0
+    DEBUG = 10
+    INFO = 20
+    WARN = 30
+    ERROR = 40
+    FATAL = 50
+
+
+_BY_NAME = {s.name.lower(): s for s in LoggingSeverity}
+_BY_NAME["warning"] = LoggingSeverity.WARN
+
+_levels: dict[str, LoggingSeverity] = {}  # logger name -> level ("" is the default)
+_default_level = LoggingSeverity.INFO
+_write_lock = threading.Lock()
+
+
+def severity(level: str | int | LoggingSeverity) -> LoggingSeverity:
+    """A severity from a name (``"warn"``) or number."""
+    if isinstance(level, str):
+        try:
+            return _BY_NAME[level.lower()]
+        except KeyError:
+            raise ValueError(
+                f"unknown log level {level!r} (expected debug, info, warn, error or fatal)"
+            ) from None
+    return LoggingSeverity(level)
+
+
+def set_logger_level(name: str, level: str | int | LoggingSeverity) -> None:
+    """Set the level of logger ``name`` (``""`` sets the default level)."""
+    global _default_level
+    value = severity(level)
+    if name == "":
+        _default_level = LoggingSeverity.INFO if value == LoggingSeverity.UNSET else value
+    else:
+        _levels[name] = value
+
+
+def apply_log_levels(levels: dict[str, str]) -> None:
+    """Apply ``--log-level`` settings (``{"": "debug", "talker": "warn"}``)."""
+    for name, level in levels.items():
+        set_logger_level(name, level)
+
+
+def _stream() -> TextIO:
+    return sys.stdout if os.environ.get("RCUTILS_LOGGING_USE_STDOUT") == "1" else sys.stderr
+
+
+class RcutilsLogger:
+    """A named logger: ``debug/info/warn/error/fatal(msg, once=, throttle_duration_sec=, ...)``."""
+
+    def __init__(self, name: str = "") -> None:
+        self.name = name
+        self._once: set[Any] = set()
+        self._last: dict[Any, float] = {}
+        self._skipped: set[Any] = set()
+
+    def get_child(self, name: str) -> RcutilsLogger:
+        """The logger ``<this>.<name>``."""
+        return RcutilsLogger(f"{self.name}.{name}" if self.name else name)
+
+    def set_level(self, level: str | int | LoggingSeverity) -> None:
+        """Set this logger's level."""
+        set_logger_level(self.name, level)
+
+    def get_effective_level(self) -> LoggingSeverity:
+        """This logger's level, else its nearest ancestor's, else the default."""
+        name = self.name
+        while name:
+            level = _levels.get(name, LoggingSeverity.UNSET)
+            if level != LoggingSeverity.UNSET:
+                return level
+            name = name.rpartition(".")[0]
+        return _default_level
+
+    def is_enabled_for(self, level: str | int | LoggingSeverity) -> bool:
+        """Whether a message of ``level`` would be printed."""
+        return severity(level) >= self.get_effective_level()
+
+    def log(self, message: Any, level: str | int | LoggingSeverity, **options: Any) -> bool:
+        """Print ``message`` at ``level``; returns whether it was printed."""
+        value = severity(level)
+        if value < self.get_effective_level():
+            return False
+        caller = sys._getframe(2)
+        site = (caller.f_code.co_filename, caller.f_lineno)
+        if options.get("once"):
+            if site in self._once:
+                return False
+            self._once.add(site)
+        if options.get("skip_first") and site not in self._skipped:
+            self._skipped.add(site)
+            return False
+        throttle = options.get("throttle_duration_sec")
+        if throttle:
+            now = time.monotonic()
+            last = self._last.get(site)
+            if last is not None and now - last < float(throttle):
+                return False
+            self._last[site] = now
+        stamp = time.time()
+        line = f"[{value.name}] [{stamp:.9f}] [{self.name}]: {message}\n"
+        stream = _stream()
+        with _write_lock:
+            stream.write(line)
+            stream.flush()
+        return True
+
+    def debug(self, message: Any, **options: Any) -> bool:
+        """Log at DEBUG."""
+        return self.log(message, LoggingSeverity.DEBUG, **options)
+
+    def info(self, message: Any, **options: Any) -> bool:
+        """Log at INFO."""
+        return self.log(message, LoggingSeverity.INFO, **options)
+
+    def warn(self, message: Any, **options: Any) -> bool:
+        """Log at WARN."""
+        return self.log(message, LoggingSeverity.WARN, **options)
+
+    warning = warn
+
+    def error(self, message: Any, **options: Any) -> bool:
+        """Log at ERROR."""
+        return self.log(message, LoggingSeverity.ERROR, **options)
+
+    def fatal(self, message: Any, **options: Any) -> bool:
+        """Log at FATAL."""
+        return self.log(message, LoggingSeverity.FATAL, **options)
+
+
+def get_logger(name: str) -> RcutilsLogger:
+    """A logger by name (like ``rclpy.logging.get_logger``)."""
+    return RcutilsLogger(name)

@@ -1,0 +1,193 @@
+"""The typestore: rosbags' ROS 2 Jazzy messages, launchkit's services, rclpy-style defaults.
+
+rosbags generates plain dataclasses whose fields are all required and whose numeric arrays must be
+numpy arrays. ``_make_rclpy_like`` patches each class so that ``Twist()`` works, every field has
+rclpy's default, and lists assigned to numeric array fields become numpy arrays.
+"""
+
+from __future__ import annotations
+
+import functools
+import threading
+from collections.abc import Callable
+from typing import Any
+
+import numpy as np
+from rosbags.typesys import Stores, get_types_from_msg, get_typestore
+from rosbags.typesys.store import Typestore
+
+from launchkit.ros.msgs._srv_defs import SERVICES
+
+_BASE, _NAME, _ARRAY, _SEQUENCE = 1, 2, 3, 4
+
+_NUMPY_DTYPES: dict[str, Any] = {
+    "bool": np.bool_,
+    "byte": np.uint8,
+    "char": np.uint8,
+    "int8": np.int8,
+    "uint8": np.uint8,
+    "int16": np.int16,
+    "uint16": np.uint16,
+    "int32": np.int32,
+    "uint32": np.uint32,
+    "int64": np.int64,
+    "uint64": np.uint64,
+    "float32": np.float32,
+    "float64": np.float64,
+}
+
+# Default values written in the .msg files (rosbags does not keep them); rclpy honours them.
+_MSG_DEFAULTS: dict[str, dict[str, Any]] = {
+    "geometry_msgs/msg/Quaternion": {"w": 1.0},
+}
+
+_lock = threading.Lock()
+_store: Typestore | None = None
+
+
+def typestore() -> Typestore:
+    """The process-wide typestore (built on first use: about 0.1 s)."""
+    global _store
+    with _lock:
+        if _store is None:
+            _store = _build()
+        return _store
+
+
+def _build() -> Typestore:
+    ts = get_typestore(Stores.ROS2_JAZZY)
+    _chars_as_uint8(ts)
+    for name, text in SERVICES.items():
+        ts.register(_service_types(name, text))
+    for cls_name in list(ts.types):
+        _make_rclpy_like(ts, cls_name)
+    return ts
+
+
+def _chars_as_uint8(ts: Typestore) -> None:
+    # rosidl maps the .msg ``char`` to uint8; rosbags keeps "char", which changes the RIHS01 hash
+    # (service_msgs/ServiceEventInfo, hence every service hash). The CDR bytes are the same.
+    def fix(desc: Any) -> Any:
+        kind, detail = desc
+        if kind == _BASE and detail[0] == "char":
+            return (kind, ("uint8", detail[1]))
+        if kind in (_ARRAY, _SEQUENCE):
+            return (kind, (fix(detail[0]), detail[1]))
+        return desc
+
+    for name, (consts, fields) in list(ts.fielddefs.items()):
+        ts.fielddefs[name] = (consts, [(fname, fix(desc)) for fname, desc in fields])
+
+
+def _service_types(name: str, text: str) -> dict[str, Any]:
+    """Request, Response, Event and the service's own description (used only for its hash)."""
+    pkg, _, short = name.split("/")
+    request_text, _, response_text = text.partition("---\n")
+    renames = {
+        f"{pkg}/msg/{short}_{part}": f"{name}_{part}" for part in ("Request", "Response", "Event")
+    }
+
+    def parse(body: str, suffix: str) -> tuple[str, Any]:
+        ((_, (consts, fields)),) = get_types_from_msg(body, f"{pkg}/msg/{short}{suffix}").items()
+        return f"{name}{suffix}", (consts, [(n, _rename(d, renames)) for n, d in fields])
+
+    event = (
+        f"service_msgs/msg/ServiceEventInfo info\n"
+        f"{short}_Request[<=1] request\n{short}_Response[<=1] response\n"
+    )
+    whole = (
+        f"{short}_Request request_message\n{short}_Response response_message\n"
+        f"{short}_Event event_message\n"
+    )
+    return dict(
+        [
+            parse(request_text, "_Request"),
+            parse(response_text, "_Response"),
+            parse(event, "_Event"),
+            parse(whole, ""),
+        ]
+    )
+
+
+def _rename(desc: Any, renames: dict[str, str]) -> Any:
+    kind, detail = desc
+    if kind == _NAME:
+        return (kind, renames.get(detail, detail))
+    if kind in (_ARRAY, _SEQUENCE):
+        return (kind, (_rename(detail[0], renames), detail[1]))
+    return desc
+
+
+def _default_factory(ts: Typestore, desc: Any) -> Callable[[], Any]:
+    """A zero-argument callable giving rclpy's default for a field of this description."""
+    kind, detail = desc
+    if kind == _BASE:
+        base = detail[0]
+        if base == "string" or base == "wstring":
+            return str
+        if base == "bool":
+            return bool
+        if base in ("float32", "float64"):
+            return float
+        return int
+    if kind == _NAME:
+        return lambda: ts.types[detail]()
+    sub, length = detail
+    dtype = _numpy_dtype(sub)
+    if kind == _ARRAY:
+        if dtype is not None:
+            return lambda: np.zeros(length, dtype=dtype)
+        element = _default_factory(ts, sub)
+        return lambda: [element() for _ in range(length)]
+    if dtype is not None:
+        return lambda: np.zeros(0, dtype=dtype)
+    return list
+
+
+def _numpy_dtype(desc: Any) -> Any:
+    kind, detail = desc
+    if kind == _BASE:
+        return _NUMPY_DTYPES.get(detail[0])
+    return None
+
+
+def _make_rclpy_like(ts: Typestore, name: str) -> None:
+    cls = ts.types[name]
+    if getattr(cls, "__launchkit__", False):
+        return
+    fields = ts.fielddefs[name][1]
+    defaults = {fname: _default_factory(ts, desc) for fname, desc in fields}
+    for fname, value in _MSG_DEFAULTS.get(name, {}).items():
+        defaults[fname] = functools.partial(lambda v: v, value)
+    arrays = {
+        fname: dtype
+        for fname, desc in fields
+        if desc[0] in (_ARRAY, _SEQUENCE) and (dtype := _numpy_dtype(desc[1][0])) is not None
+    }
+    names = [fname for fname, _ in fields]
+    original_init = cls.__init__
+
+    @functools.wraps(original_init)
+    def __init__(self: Any, *args: Any, **kwargs: Any) -> None:
+        if len(args) != len(names):
+            for fname in names[len(args) :]:
+                if fname not in kwargs:
+                    kwargs[fname] = defaults[fname]()
+        original_init(self, *args, **kwargs)
+
+    setattr(cls, "__init__", __init__)  # noqa: B010 (assigning a method)
+    if arrays:
+
+        def __setattr__(self: Any, key: str, value: Any) -> None:
+            dtype = arrays.get(key)
+            if dtype is not None and not isinstance(value, np.ndarray):
+                value = np.asarray(
+                    value if not isinstance(value, (bytes, bytearray)) else list(value), dtype=dtype
+                )
+            object.__setattr__(self, key, value)
+
+        setattr(cls, "__setattr__", __setattr__)  # noqa: B010
+    short = name.rsplit("/", 1)[-1]
+    cls.__name__ = short
+    cls.__qualname__ = short
+    setattr(cls, "__launchkit__", True)  # noqa: B010

@@ -1,0 +1,131 @@
+"""A node's parameter store: declare, get, set, with overrides and type checks (rclpy rules)."""
+
+from __future__ import annotations
+
+from collections.abc import Callable
+from dataclasses import dataclass
+from typing import Any
+
+from launchkit.ros.params import Parameter, ParameterType
+
+
+class ParameterNotDeclaredException(Exception):
+    """A parameter was read or set before it was declared."""
+
+
+class ParameterAlreadyDeclaredException(Exception):
+    """``declare_parameter`` for a name that exists."""
+
+
+class InvalidParameterTypeException(Exception):
+    """A value whose type differs from the declared one."""
+
+
+@dataclass
+class SetParametersResult:
+    """Whether setting parameters succeeded (rcl_interfaces/msg/SetParametersResult)."""
+
+    successful: bool
+    reason: str = ""
+
+
+SetCallback = Callable[[list[Parameter]], SetParametersResult]
+
+
+class ParameterStore:
+    """Holds a node's parameters and the values given to it from outside."""
+
+    def __init__(self, overrides: dict[str, Any], allow_undeclared: bool) -> None:
+        self.overrides = dict(overrides)
+        self.allow_undeclared = allow_undeclared
+        self.params: dict[str, Parameter] = {}
+        self.descriptors: dict[str, Any] = {}
+        self.on_set: list[SetCallback] = []
+        self.post_set: list[Callable[[list[Parameter]], None]] = []
+
+    def declare(
+        self,
+        name: str,
+        default: Any = None,
+        descriptor: Any = None,
+        ignore_override: bool = False,
+    ) -> Parameter:
+        """Declare ``name``; an override from the command line or a file wins over ``default``."""
+        if name in self.params:
+            raise ParameterAlreadyDeclaredException(f"parameter '{name}' is already declared")
+        if isinstance(default, Parameter):
+            default = default.value
+        value = default
+        if not ignore_override and name in self.overrides:
+            value = self.overrides[name]
+        declared_type = ParameterType.from_value(default) if default is not None else None
+        param = Parameter(name, value=value)
+        if (
+            declared_type is not None
+            and param.type_ != declared_type
+            and not (declared_type == ParameterType.DOUBLE and param.type_ == ParameterType.INTEGER)
+            and not (
+                declared_type == ParameterType.DOUBLE_ARRAY
+                and param.type_ == ParameterType.INTEGER_ARRAY
+            )
+        ):
+            raise InvalidParameterTypeException(
+                f"parameter '{name}' was declared as {declared_type.name} but the value given "
+                f"to the node is {param.type_.name} ({value!r})"
+            )
+        if declared_type is not None and param.type_ != declared_type:
+            param = Parameter(name, declared_type, value)
+        result = self._check([param])
+        if not result.successful:
+            raise InvalidParameterTypeException(f"parameter '{name}' rejected: {result.reason}")
+        self.params[name] = param
+        self.descriptors[name] = declared_type
+        for callback in self.post_set:
+            callback([param])
+        return param
+
+    def get(self, name: str) -> Parameter:
+        """The parameter ``name`` (undeclared: error unless undeclared ones are allowed)."""
+        if name in self.params:
+            return self.params[name]
+        if self.allow_undeclared:
+            return Parameter(name, ParameterType.NOT_SET, None)
+        raise ParameterNotDeclaredException(f"parameter '{name}' is not declared")
+
+    def set(self, params: list[Parameter]) -> list[SetParametersResult]:
+        """Set each parameter in turn; each gets its own result."""
+        return [self.set_atomically([p]) for p in params]
+
+    def set_atomically(self, params: list[Parameter]) -> SetParametersResult:
+        """Set all or none."""
+        for param in params:
+            if param.name not in self.params and not self.allow_undeclared:
+                return SetParametersResult(False, f"parameter '{param.name}' is not declared")
+            declared = self.descriptors.get(param.name)
+            if (
+                declared is not None
+                and param.type_ != declared
+                and param.type_ != ParameterType.NOT_SET
+            ):
+                return SetParametersResult(
+                    False, f"Wrong parameter type, expected 'Type.{declared.name}'"
+                )
+        result = self._check(params)
+        if not result.successful:
+            return result
+        for param in params:
+            if param.type_ == ParameterType.NOT_SET:
+                self.params.pop(param.name, None)
+            else:
+                self.params[param.name] = param
+                self.descriptors.setdefault(param.name, param.type_)
+        for callback in self.post_set:
+            callback(params)
+        return SetParametersResult(True)
+
+    def _check(self, params: list[Parameter]) -> SetParametersResult:
+        for callback in self.on_set:
+            result = callback(params)
+            if not getattr(result, "successful", False):
+                return SetParametersResult(False, str(getattr(result, "reason", "")))
+        return SetParametersResult(True)

@@ -1,0 +1,104 @@
+"""The ``~/list_parameters``, ``~/get_parameters``, ``~/set_parameters``... services of a node."""
+
+from __future__ import annotations
+
+from typing import TYPE_CHECKING, Any
+
+from launchkit.ros.msgs import get_message, get_service
+from launchkit.ros.params import Parameter, ParameterType
+
+if TYPE_CHECKING:
+    from launchkit.ros.node import Node
+
+
+class ParameterService:
+    """Serves a node's parameters the way rclpy does (for ``launchkit param ...``)."""
+
+    def __init__(self, node: Node) -> None:
+        self.node = node
+        prefix = "~/"
+        node.create_service(
+            get_service("rcl_interfaces/srv/ListParameters"), prefix + "list_parameters", self._list
+        )
+        node.create_service(
+            get_service("rcl_interfaces/srv/GetParameters"), prefix + "get_parameters", self._get
+        )
+        node.create_service(
+            get_service("rcl_interfaces/srv/GetParameterTypes"),
+            prefix + "get_parameter_types",
+            self._types,
+        )
+        node.create_service(
+            get_service("rcl_interfaces/srv/SetParameters"), prefix + "set_parameters", self._set
+        )
+        node.create_service(
+            get_service("rcl_interfaces/srv/SetParametersAtomically"),
+            prefix + "set_parameters_atomically",
+            self._set_atomically,
+        )
+        node.create_service(
+            get_service("rcl_interfaces/srv/DescribeParameters"),
+            prefix + "describe_parameters",
+            self._describe,
+        )
+
+    def _list(self, request: Any, response: Any) -> Any:
+        names = sorted(self.node._parameters)
+        prefixes = list(request.prefixes)
+        depth = int(request.depth)
+        selected = []
+        for name in names:
+            if prefixes and not any(name == p or name.startswith(p + ".") for p in prefixes):
+                continue
+            if depth:
+                rest = name
+                for p in prefixes:
+                    if name.startswith(p + "."):
+                        rest = name[len(p) + 1 :]
+                if rest.count(".") >= depth:
+                    continue
+            selected.append(name)
+        found_prefixes = sorted({n.rpartition(".")[0] for n in selected if "." in n})
+        result_cls = get_message("rcl_interfaces/msg/ListParametersResult")
+        response.result = result_cls(names=selected, prefixes=found_prefixes)
+        return response
+
+    def _get(self, request: Any, response: Any) -> Any:
+        values = []
+        for name in request.names:
+            param = self.node._parameters.get(name, Parameter(name, ParameterType.NOT_SET, None))
+            values.append(param.to_msg_value())
+        response.values = values
+        return response
+
+    def _types(self, request: Any, response: Any) -> Any:
+        response.types = [
+            int(self.node._parameters[n].type_) if n in self.node._parameters else 0
+            for n in request.names
+        ]
+        return response
+
+    def _set(self, request: Any, response: Any) -> Any:
+        params = [Parameter.from_msg_value(p.name, p.value) for p in request.parameters]
+        results = self.node.set_parameters(params)
+        result_cls = get_message("rcl_interfaces/msg/SetParametersResult")
+        response.results = [result_cls(successful=r.successful, reason=r.reason) for r in results]
+        return response
+
+    def _set_atomically(self, request: Any, response: Any) -> Any:
+        params = [Parameter.from_msg_value(p.name, p.value) for p in request.parameters]
+        result = self.node.set_parameters_atomically(params)
+        result_cls = get_message("rcl_interfaces/msg/SetParametersResult")
+        response.result = result_cls(successful=result.successful, reason=result.reason)
+        return response
+
+    def _describe(self, request: Any, response: Any) -> Any:
+        descriptor_cls = get_message("rcl_interfaces/msg/ParameterDescriptor")
+        response.descriptors = [
+            descriptor_cls(
+                name=n,
+                type=int(self.node._parameters[n].type_) if n in self.node._parameters else 0,
+            )
+            for n in request.names
+        ]
+        return response

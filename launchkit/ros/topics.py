@@ -1,0 +1,270 @@
+"""Publishers and subscriptions over Zenoh, with rmw_zenoh keys, attachments and tokens."""
+
+from __future__ import annotations
+
+import threading
+import time
+from collections.abc import Callable
+from typing import TYPE_CHECKING, Any
+
+import zenoh
+from zenoh import ext
+
+from launchkit.ros.keyexpr import Token, decode_attachment, encode_attachment, entity_token, gid_of
+from launchkit.ros.msgs import message_type_name, serialize, type_hash
+from launchkit.ros.msgs._api import deserialize
+from launchkit.ros.qos import (
+    DurabilityPolicy,
+    HistoryPolicy,
+    QoSProfile,
+    ReliabilityPolicy,
+    incompatibility,
+)
+
+if TYPE_CHECKING:
+    from launchkit.ros.node import Node
+
+
+class _Entity:
+    """What publishers and subscriptions share: names, key, liveliness token, GID."""
+
+    KIND = ""
+
+    def __init__(self, node: Node, msg_type: Any, topic: str, qos: QoSProfile) -> None:
+        self.node = node
+        self.msg_type = msg_type
+        self.type_name = message_type_name(msg_type)
+        self.topic_name = node.resolve_topic_name(topic)
+        self.qos_profile = qos
+        self.type_hash = type_hash(self.type_name)
+        self.key = node._topic_key(self.topic_name, self.type_name, self.type_hash)
+        self.entity_id = node.context.next_entity_id()
+        self.token_key = entity_token(
+            node.context.domain_id,
+            node._zid,
+            node._node_id,
+            self.entity_id,
+            self.KIND,
+            node.context.ros_args.enclave,
+            node.get_namespace(),
+            node.get_name(),
+            self.topic_name,
+            self.type_name,
+            self.type_hash,
+            qos,
+        )
+        self.gid = gid_of(self.token_key)
+        self._token: Any = None
+        self._warned: set[str] = set()
+
+    def _announce(self) -> None:
+        self._token = self.node.context.session.liveliness().declare_token(self.token_key)
+        self.node.context.graph.add_listener(self._on_graph)
+
+    def _on_graph(self, token: Token, appeared: bool) -> None:
+        pass
+
+    def _warn_incompatible(self, peer: Token, reason: str) -> None:
+        if peer.key in self._warned:
+            return
+        self._warned.add(peer.key)
+        role = "publisher" if self.KIND == "MP" else "subscription"
+        other = "subscription" if self.KIND == "MP" else "publisher"
+        self.node.get_logger().warn(
+            f"New {other} discovered on topic '{self.topic_name}', requesting incompatible QoS. "
+            f"No messages will be sent to it. Last incompatible policy: {reason} "
+            f"(this {role} is on node '{self.node.get_fully_qualified_name()}', the {other} on "
+            f"'{peer.node_fqn}')"
+        )
+
+    def _undeclare(self, *entities: Any) -> None:
+        self.node.context.graph.remove_listener(self._on_graph)
+        for entity in (*entities, self._token):
+            if entity is None:
+                continue
+            try:
+                entity.undeclare()
+            except Exception:  # the session may be closed already
+                pass
+        self._token = None
+
+
+class Publisher(_Entity):
+    """Publishes messages of one type on one topic (``publish``, ``get_subscription_count``)."""
+
+    KIND = "MP"
+
+    def __init__(self, node: Node, msg_type: Any, topic: str, qos: QoSProfile) -> None:
+        super().__init__(node, msg_type, topic, qos)
+        session = node.context.session
+        self._sequence = 0
+        self._lock = threading.Lock()
+        reliable = qos.reliability == ReliabilityPolicy.RELIABLE
+        congestion = (
+            zenoh.CongestionControl.BLOCK
+            if reliable and qos.history == HistoryPolicy.KEEP_ALL
+            else zenoh.CongestionControl.DROP
+        )
+        if qos.durability == DurabilityPolicy.TRANSIENT_LOCAL:
+            self._pub: Any = ext.declare_advanced_publisher(
+                session,
+                self.key,
+                cache=ext.CacheConfig(max_samples=qos.effective_depth),
+                publisher_detection=True,
+                sample_miss_detection=(
+                    ext.MissDetectionConfig(heartbeat=None, sporadic_heartbeat=0.5)
+                    if reliable
+                    else None
+                ),
+                congestion_control=congestion,
+                reliability=zenoh.Reliability.RELIABLE
+                if reliable
+                else zenoh.Reliability.BEST_EFFORT,
+            )
+        else:
+            self._pub = session.declare_publisher(
+                self.key,
+                congestion_control=congestion,
+                reliability=zenoh.Reliability.RELIABLE
+                if reliable
+                else zenoh.Reliability.BEST_EFFORT,
+            )
+        self._announce()
+
+    def _on_graph(self, token: Token, appeared: bool) -> None:
+        if appeared and token.kind == "MS" and token.topic == self.topic_name and token.qos:
+            reason = incompatibility(self.qos_profile, token.qos)
+            if reason:
+                self._warn_incompatible(token, reason)
+
+    @property
+    def topic(self) -> str:
+        """The resolved topic name."""
+        return self.topic_name
+
+    def publish(self, msg: Any) -> None:
+        """Serialize ``msg`` (CDR) and send it with rmw_zenoh's attachment."""
+        if getattr(msg, "__msgtype__", None) != self.type_name:
+            if isinstance(msg, (bytes, bytearray, memoryview)):
+                data = bytes(msg)
+            else:
+                raise TypeError(
+                    f"publisher on '{self.topic_name}' expects {self.type_name}, "
+                    f"got {type(msg).__name__}"
+                )
+        else:
+            data = serialize(msg, self.type_name)
+        with self._lock:
+            self._sequence += 1
+            attachment = encode_attachment(self._sequence, time.time_ns(), self.gid)
+            self._pub.put(data, attachment=attachment)
+
+    def get_subscription_count(self) -> int:
+        """How many matching subscriptions (of any process) exist now."""
+        return len(
+            [
+                t
+                for t in self.node.context.graph.tokens("MS", self.topic_name)
+                if t.type_name == self.type_name
+            ]
+        )
+
+    def wait_for_subscriptions(self, count: int = 1, timeout_sec: float | None = None) -> bool:
+        """Block until at least ``count`` subscriptions match (launchkit extension)."""
+        return self.node.context.graph.wait_for(
+            lambda: self.get_subscription_count() >= count, timeout_sec
+        )
+
+    def destroy(self) -> None:
+        """Undeclare the publisher and its token."""
+        self._undeclare(self._pub)
+        self.node._forget(self)
+
+
+class Subscription(_Entity):
+    """Calls ``callback(msg)`` in the spinning thread for every message on a topic."""
+
+    KIND = "MS"
+
+    def __init__(
+        self,
+        node: Node,
+        msg_type: Any,
+        topic: str,
+        callback: Callable[[Any], Any],
+        qos: QoSProfile,
+        raw: bool = False,
+    ) -> None:
+        super().__init__(node, msg_type, topic, qos)
+        self.callback = callback
+        self.raw = raw
+        self._blocked_gids: set[bytes] = set()
+        session = node.context.session
+        reliable = qos.reliability == ReliabilityPolicy.RELIABLE
+        if qos.durability == DurabilityPolicy.TRANSIENT_LOCAL:
+            self._sub: Any = ext.declare_advanced_subscriber(
+                session,
+                self.key,
+                self._on_sample,
+                history=ext.HistoryConfig(
+                    detect_late_publishers=True, max_samples=qos.effective_depth
+                ),
+                recovery=(
+                    ext.RecoveryConfig(periodic_queries=None, heartbeat=True) if reliable else None
+                ),
+                subscriber_detection=True,
+            )
+        else:
+            self._sub = session.declare_subscriber(self.key, self._on_sample)
+        self._announce()
+
+    @property
+    def topic(self) -> str:
+        """The resolved topic name."""
+        return self.topic_name
+
+    def _on_graph(self, token: Token, appeared: bool) -> None:
+        if token.kind != "MP" or token.topic != self.topic_name or token.qos is None:
+            return
+        reason = incompatibility(token.qos, self.qos_profile)
+        if reason is None:
+            return
+        if appeared:
+            self._blocked_gids.add(token.gid)
+            self._warn_incompatible(token, reason)
+        else:
+            self._blocked_gids.discard(token.gid)
+
+    def _on_sample(self, sample: zenoh.Sample) -> None:
+        # zenoh's thread: copy out and hand over to the spinning thread
+        attachment = sample.attachment
+        self.node._work.put(
+            (
+                self._deliver,
+                (sample.payload.to_bytes(), None if attachment is None else attachment.to_bytes()),
+            )
+        )
+
+    def _deliver(self, payload: bytes, attachment: bytes | None) -> None:
+        if self._blocked_gids:
+            decoded = decode_attachment(attachment)
+            if decoded is not None and decoded.gid in self._blocked_gids:
+                return
+        if self.raw:
+            self.callback(payload)
+            return
+        try:
+            msg = deserialize(payload, self.type_name)
+        except Exception as exc:
+            self.node.get_logger().error(
+                f"dropped a message on '{self.topic_name}' that is not a valid "
+                f"{self.type_name}: {exc}",
+                throttle_duration_sec=5.0,
+            )
+            return
+        self.callback(msg)
+
+    def destroy(self) -> None:
+        """Undeclare the subscriber and its token."""
+        self._undeclare(self._sub)
+        self.node._forget(self)

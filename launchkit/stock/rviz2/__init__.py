@@ -1,0 +1,13 @@
+"""The ``rviz2`` stand-in: a Foxglove WebSocket server carrying every topic of the ROS graph."""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+from launchkit.packages import PythonPackage
+
+PACKAGE = PythonPackage(
+    name="rviz2",
+    share=Path(__file__).resolve().parent,
+    executables={"rviz2": "launchkit.stock.rviz2.node"},
+)

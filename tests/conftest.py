@@ -1,0 +1,95 @@
+"""Shared fixtures: evaluate inline launch XML without starting anything."""
+
+from __future__ import annotations
+
+from collections.abc import Callable, Mapping
+from dataclasses import dataclass, field
+from pathlib import Path
+
+import pytest
+
+from launchkit.checks import check_tree
+from launchkit.description.context import LaunchContext
+from launchkit.description.process import ProcessSpec
+from launchkit.frontend.xml_parser import XmlParser
+from launchkit.packages import PackageIndex
+from launchkit.runtime.recorder import Recorded, Recorder
+
+
+@dataclass
+class Evaluated:
+    """What a launch file would do, as recorded without running it."""
+
+    items: list[Recorded]
+    context: LaunchContext
+    logs: list[str] = field(default_factory=list)
+    processes: list[ProcessSpec] = field(default_factory=list)
+
+    def process(self, name: str) -> ProcessSpec:
+        """The one recorded process called ``name``."""
+        found = [p for p in self.processes if p.name == name]
+        assert len(found) == 1, (
+            f"expected one process {name!r}, got {[p.name for p in self.processes]}"
+        )
+        return found[0]
+
+    def messages(self) -> list[str]:
+        """The user log messages, without their level and logger."""
+        return [line.split("]: ", 1)[1] for line in self.logs]
+
+
+def _flatten(items: list[Recorded], into: Evaluated) -> None:
+    for item in items:
+        if item.kind == "log":
+            into.logs.append(item.text)
+        elif item.kind == "process" and item.spec is not None:
+            into.processes.append(item.spec)
+        _flatten(item.inner, into)
+
+
+EvaluateXml = Callable[..., Evaluated]
+
+
+@pytest.fixture
+def evaluate_xml(tmp_path: Path) -> EvaluateXml:
+    """Write launch XML to a file in ``tmp_path``, check it and evaluate it with a recorder.
+
+    Timers fire at once in their captured scope (that is what the recorder does), so their
+    actions show up in the result too.
+    """
+    contexts: list[LaunchContext] = []
+
+    def evaluate(
+        xml: str,
+        args: Mapping[str, str] | None = None,
+        *,
+        name: str = "test.launch.xml",
+        env: Mapping[str, str] | None = None,
+        packages: PackageIndex | None = None,
+    ) -> Evaluated:
+        path = tmp_path / name
+        path.write_text(xml)
+        parser = XmlParser()
+        index = packages or PackageIndex()
+        tree = check_tree(path, args or {}, parser, index)
+        recorder = Recorder()
+        context = LaunchContext(
+            packages=index,
+            runtime=recorder,
+            loader=parser.load,
+            environment=dict(env if env is not None else {"PATH": "/usr/bin:/bin"}),
+            log_dir=lambda: tmp_path / "log",
+            configurations=dict(args or {}),
+        )
+        recorder.context = context
+        contexts.append(context)
+        with context.in_file(tree.top.path):
+            for action in tree.top.actions:
+                action.visit(context)
+        result = Evaluated(recorder.items, context)
+        _flatten(recorder.items, result)
+        return result
+
+    yield evaluate  # type: ignore[misc]
+    for context in contexts:
+        context.cleanup()

@@ -1,0 +1,133 @@
+"""The command line: check, --print, --show-args, package commands and launch-file lookup."""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import pytest
+
+from tests.engine.launcher import run_launchkit as launchkit
+
+
+def test_check_only_validates(tmp_path: Path) -> None:
+    marker = tmp_path / "started"
+    path = tmp_path / "a.launch.xml"
+    path.write_text(f'<launch><executable cmd="touch {marker}"/></launch>')
+    result = launchkit("check", str(path), cwd=tmp_path)
+    assert result.returncode == 0, result.stderr
+    assert "ok" in result.stdout
+    assert not marker.exists()
+
+
+def test_print_shows_processes_and_runs_nothing(tmp_path: Path) -> None:
+    marker = tmp_path / "started"
+    path = tmp_path / "a.launch.xml"
+    path.write_text(
+        "<launch>\n"
+        '  <arg name="who" default="me"/>\n'
+        '  <set_env name="WHO" value="$(var who)"/>\n'
+        f'  <executable name="toucher" cmd="touch {marker}" cwd="/tmp"/>\n'
+        '  <timer period="2"><executable cmd="echo later"/></timer>\n'
+        "</launch>"
+    )
+    result = launchkit("run", str(path), "who:=you", "--print", cwd=tmp_path)
+    assert result.returncode == 0, result.stderr
+    out = result.stdout
+    assert f"process toucher  ({path}:4:3)" in out
+    assert f"cmd: touch {marker}" in out
+    assert "cwd: /tmp" in out
+    assert "env: WHO=you" in out
+    assert "timer after 2 s:" in out and "cmd: echo later" in out
+    assert not marker.exists()
+
+
+def test_show_args_lists_defaults_descriptions_and_choices(tmp_path: Path) -> None:
+    path = tmp_path / "a.launch.xml"
+    path.write_text(
+        '<launch><arg name="mode" default="sim" description="where to run">'
+        '<choice value="sim"/><choice value="real"/></arg><arg name="robot"/></launch>'
+    )
+    result = launchkit("run", str(path), "--show-args", cwd=tmp_path)
+    assert result.returncode == 0, result.stderr
+    assert "'mode':" in result.stdout and "where to run" in result.stdout
+    assert "Valid choices are: 'sim', 'real'" in result.stdout
+    assert "(default: 'sim')" in result.stdout
+    assert "'robot':" in result.stdout and "(required)" in result.stdout
+
+
+def test_pkg_commands_know_the_robot_package(tmp_path: Path) -> None:
+    listed = launchkit("pkg", "list", cwd=tmp_path)
+    assert "robot_wheel" in listed.stdout.split()
+    share = launchkit("pkg", "share", "robot_wheel", cwd=tmp_path)
+    assert (Path(share.stdout.strip()) / "launch_xml" / "hello.launch.xml").is_file()
+    prefix = launchkit("pkg", "prefix", "robot_wheel", cwd=tmp_path)
+    assert prefix.returncode == 0 and prefix.stdout.strip()
+    missing = launchkit("pkg", "prefix", "no_such_pkg", cwd=tmp_path)
+    assert missing.returncode == 2
+    assert "package 'no_such_pkg' not found" in missing.stderr
+    assert "AMENT_PREFIX_PATH" in missing.stderr
+
+
+@pytest.fixture
+def ament_prefix(tmp_path: Path) -> Path:
+    """An AMENT_PREFIX_PATH prefix with package ``amentpkg``: a launch file and an executable."""
+    prefix = tmp_path / "install"
+    index = prefix / "share" / "ament_index" / "resource_index" / "packages"
+    index.mkdir(parents=True)
+    (index / "amentpkg").touch()
+    launch = prefix / "share" / "amentpkg" / "launch"
+    launch.mkdir(parents=True)
+    (launch / "hello.launch.xml").write_text('<launch><log message="from ament"/></launch>')
+    (launch / "only_here.launch.xml").write_text('<launch><log message="only here"/></launch>')
+    tool = prefix / "lib" / "amentpkg" / "tool"
+    tool.parent.mkdir(parents=True)
+    tool.write_text('#!/bin/sh\necho tool ran with "$@"\n')
+    tool.chmod(0o755)
+    return prefix
+
+
+def test_run_pkg_file_from_ament_prefix(tmp_path: Path, ament_prefix: Path) -> None:
+    env = {"AMENT_PREFIX_PATH": str(ament_prefix)}
+    result = launchkit("run", "amentpkg", "hello.launch.xml", cwd=tmp_path, env=env)
+    assert result.returncode == 0, result.stderr
+    assert "from ament" in result.stdout
+    executed = launchkit("exec", "amentpkg", "tool", "x", cwd=tmp_path, env=env)
+    assert executed.stdout.strip() == "tool ran with x"
+
+
+def test_bare_file_name_is_found_in_package_launch_folders(
+    tmp_path: Path, ament_prefix: Path
+) -> None:
+    env = {"AMENT_PREFIX_PATH": str(ament_prefix)}
+    result = launchkit("run", "only_here.launch.xml", cwd=tmp_path, env=env)
+    assert result.returncode == 0, result.stderr
+    assert "only here" in result.stdout
+
+
+def test_bare_file_name_in_several_packages_lists_them(tmp_path: Path, ament_prefix: Path) -> None:
+    env = {"AMENT_PREFIX_PATH": str(ament_prefix)}
+    result = launchkit("run", "hello.launch.xml", cwd=tmp_path, env=env)
+    assert result.returncode == 2
+    assert "several packages" in result.stderr
+    assert "amentpkg" in result.stderr and "launch_xml" in result.stderr
+
+
+def test_file_in_current_directory_wins(tmp_path: Path, ament_prefix: Path) -> None:
+    (tmp_path / "hello.launch.xml").write_text('<launch><log message="local"/></launch>')
+    env = {"AMENT_PREFIX_PATH": str(ament_prefix)}
+    result = launchkit("run", "hello.launch.xml", cwd=tmp_path, env=env)
+    assert result.returncode == 0 and "local" in result.stdout
+
+
+def test_example_launch_file_runs(tmp_path: Path) -> None:
+    result = launchkit(
+        "run",
+        "robot_wheel",
+        "hello.launch.xml",
+        "greeting:=Salut",
+        "count:=2",
+        cwd=tmp_path,
+        env={"ROS_LOG_DIR": str(tmp_path / "log")},
+    )
+    assert result.returncode == 0, result.stdout + result.stderr
+    assert "[talker-1] Salut number 2" in result.stdout

@@ -1,0 +1,122 @@
+"""Python launch files written against ROS 2's launch API run through the same engine."""
+
+from __future__ import annotations
+
+import sys
+from pathlib import Path
+
+import pytest
+
+from launchkit.errors import LaunchFileError
+from launchkit.frontend.python_launch import launch_api
+from launchkit.packages import PackageIndex, PythonPackage
+from tests.conftest import EvaluateXml
+
+GAZEBO_LIKE = """
+from launch import LaunchDescription
+from launch.actions import DeclareLaunchArgument, ExecuteProcess, LogInfo
+from launch.conditions import IfCondition
+from launch.substitutions import LaunchConfiguration, PythonExpression
+
+
+def _flag(name):
+    value = LaunchConfiguration(name)
+    return PythonExpression(['"--', name, '" if "true" == "', value, '" else ""'])
+
+
+def generate_launch_description():
+    return LaunchDescription([
+        DeclareLaunchArgument('verbose', default_value='false', description='Set "true" for more'),
+        DeclareLaunchArgument('world', default_value='empty.world'),
+        ExecuteProcess(cmd=['server', LaunchConfiguration('world'), _flag('verbose')],
+                       output='screen', name='server'),
+        LogInfo(msg=['client on: ', LaunchConfiguration('world')],
+                condition=IfCondition(LaunchConfiguration('verbose'))),
+    ])
+"""
+
+
+def test_declarations_processes_and_conditions(evaluate_xml: EvaluateXml) -> None:
+    quiet = evaluate_xml(GAZEBO_LIKE, name="gz.launch.py")
+    assert quiet.process("server").cmd == ["server", "empty.world"]
+    assert quiet.logs == []
+    loud = evaluate_xml(GAZEBO_LIKE, {"verbose": "true", "world": "w"}, name="gz.launch.py")
+    assert loud.process("server").cmd == ["server", "w", "--verbose"]
+    assert loud.messages() == ["client on: w"]
+
+
+def test_xml_includes_python_with_arguments(evaluate_xml: EvaluateXml, tmp_path: Path) -> None:
+    (tmp_path / "gz.launch.py").write_text(GAZEBO_LIKE)
+    xml = """<launch>
+      <include file="$(dirname)/gz.launch.py"><arg name="verbose" value="true"/></include>
+    </launch>"""
+    result = evaluate_xml(xml)
+    assert result.process("server").cmd == ["server", "empty.world", "--verbose"]
+
+
+def test_ros_node_and_package_lookup(evaluate_xml: EvaluateXml, tmp_path: Path) -> None:
+    share = tmp_path / "share"
+    share.mkdir()
+    packages = PackageIndex(
+        ament_prefix_path="",
+        python_packages={"demo": PythonPackage("demo", share, {"talker": "demo.talker"})},
+    )
+    code = """
+import os
+from ament_index_python.packages import get_package_share_directory
+from launch import LaunchDescription
+from launch_ros.actions import Node
+from launch_ros.substitutions import FindPackageShare
+from launch.substitutions import PathJoinSubstitution
+
+
+def generate_launch_description():
+    return LaunchDescription([
+        Node(package='demo', executable='talker', name='chat', namespace='ns',
+             parameters=[{'rate': 5, 'frame': 'odom', 'enabled': True}],
+             remappings=[('in', '/out')], arguments=['--x', 'a b'], output='screen'),
+        Node(package='demo', executable='talker', exec_name='second',
+             arguments=[PathJoinSubstitution([FindPackageShare('demo'), 'cfg.yaml'])]),
+    ])
+"""
+    result = evaluate_xml(code, name="nodes.launch.py", packages=packages)
+    first, second = result.processes
+    assert first.cmd[:5] == [sys.executable, "-m", "demo.talker", "--x", "a b"]
+    ros = first.cmd[first.cmd.index("--ros-args") + 1 :]
+    assert ros[:4] == ["-r", "__node:=chat", "-r", "__ns:=/ns"]
+    assert "in:=/out" in ros
+    params = Path(ros[ros.index("--params-file") + 1]).read_text()
+    assert "rate: 5" in params and "frame: odom" in params and "enabled: true" in params
+    assert second.cmd[3] == f"{share}/cfg.yaml"
+
+
+def test_unsupported_api_names_file_and_line(evaluate_xml: EvaluateXml) -> None:
+    code = (
+        "from launch import LaunchDescription\n"
+        "from launch.actions import OpaqueFunction\n"
+        "\n"
+        "def generate_launch_description():\n"
+        "    return LaunchDescription([OpaqueFunction(function=print)])\n"
+    )
+    with pytest.raises(LaunchFileError, match="OpaqueFunction is not supported") as caught:
+        evaluate_xml(code, name="opaque.launch.py")
+    assert caught.value.location is not None and caught.value.location.line == 5
+
+
+def test_a_broken_python_file_is_a_located_error(evaluate_xml: EvaluateXml) -> None:
+    code = "from launch import LaunchDescription\n\ndef generate_launch_description():\n    1/0\n"
+    with pytest.raises(LaunchFileError, match="ZeroDivisionError") as caught:
+        evaluate_xml(code, name="broken.launch.py")
+    assert caught.value.location is not None and caught.value.location.line == 4
+
+
+def test_unknown_import_is_a_clear_error(evaluate_xml: EvaluateXml) -> None:
+    code = "import launch_testing_ros\n\ndef generate_launch_description():\n    pass\n"
+    with pytest.raises(LaunchFileError, match="launch_testing_ros"):
+        evaluate_xml(code, name="imports.launch.py")
+
+
+def test_stand_in_modules_do_not_outlive_the_load(evaluate_xml: EvaluateXml) -> None:
+    evaluate_xml(GAZEBO_LIKE, name="gz.launch.py")
+    leaked = sys.modules.get("launch")
+    assert getattr(leaked, "LaunchDescription", None) is not launch_api.LaunchDescription

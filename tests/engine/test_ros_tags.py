@@ -1,0 +1,190 @@
+"""Parse-level tests of the ROS tags: <node> command lines follow ROS 2's conventions."""
+
+from __future__ import annotations
+
+import sys
+from pathlib import Path
+
+import pytest
+import yaml
+
+from launchkit.errors import LaunchFileError
+from launchkit.packages import PackageIndex, PythonPackage
+from tests.conftest import EvaluateXml
+
+
+@pytest.fixture
+def packages(tmp_path: Path) -> PackageIndex:
+    """One Python package ``demo`` with a ``talker`` executable."""
+    share = tmp_path / "demo_share"
+    share.mkdir()
+    return PackageIndex(
+        ament_prefix_path="",
+        python_packages={"demo": PythonPackage("demo", share, {"talker": "demo.talker"})},
+    )
+
+
+def ros_args(cmd: list[str]) -> list[str]:
+    """What follows ``--ros-args``."""
+    return cmd[cmd.index("--ros-args") + 1 :]
+
+
+def params_files(cmd: list[str]) -> list[dict[str, object]]:
+    """The YAML content of every ``--params-file`` on the command line."""
+    args = ros_args(cmd)
+    return [
+        yaml.safe_load(Path(args[i + 1]).read_text())
+        for i, arg in enumerate(args)
+        if arg == "--params-file"
+    ]
+
+
+def test_node_command_line(evaluate_xml: EvaluateXml, packages: PackageIndex) -> None:
+    xml = """<launch>
+      <node pkg="demo" exec="talker" name="chatter" namespace="robot" args="--flag 'a b'"
+            output="screen" respawn="true">
+        <remap from="cmd_vel" to="/robot/cmd_vel"/>
+        <env name="EXTRA" value="1"/>
+      </node>
+    </launch>"""
+    spec = evaluate_xml(xml, packages=packages).processes[0]
+    assert spec.cmd[:5] == [sys.executable, "-m", "demo.talker", "--flag", "a b"]
+    assert ros_args(spec.cmd) == [
+        "-r",
+        "__node:=chatter",
+        "-r",
+        "__ns:=/robot",
+        "-r",
+        "cmd_vel:=/robot/cmd_vel",
+    ]
+    assert spec.is_node and spec.respawn and spec.output == "screen"
+    assert spec.env["EXTRA"] == "1"
+    assert spec.name == "talker"
+
+
+def test_node_label_is_exec_name(evaluate_xml: EvaluateXml, packages: PackageIndex) -> None:
+    xml = '<launch><node pkg="demo" exec="talker" exec_name="speaker"/></launch>'
+    spec = evaluate_xml(xml, packages=packages).processes[0]
+    assert spec.name == "speaker"
+    assert "--ros-args" not in spec.cmd
+
+
+def test_node_ros_args_attribute(evaluate_xml: EvaluateXml, packages: PackageIndex) -> None:
+    xml = '<launch><node pkg="demo" exec="talker" ros_args="--log-level debug"/></launch>'
+    spec = evaluate_xml(xml, packages=packages).processes[0]
+    assert ros_args(spec.cmd) == ["--log-level", "debug"]
+
+
+def test_params_become_a_ros_params_file(evaluate_xml: EvaluateXml, packages: PackageIndex) -> None:
+    xml = """<launch>
+      <node pkg="demo" exec="talker" name="n">
+        <param name="rate" value="10"/>
+        <param name="scale" value="0.5"/>
+        <param name="enabled" value="true"/>
+        <param name="label" value="10" type="str"/>
+        <param name="list" value="[1, 2, 3]"/>
+        <param name="words" value="a;b" value-sep=";"/>
+        <param name="wheel">
+          <param name="radius" value="0.1"/>
+        </param>
+      </node>
+    </launch>"""
+    spec = evaluate_xml(xml, packages=packages).processes[0]
+    (content,) = params_files(spec.cmd)
+    assert content == {
+        "/**": {
+            "ros__parameters": {
+                "rate": 10,
+                "scale": 0.5,
+                "enabled": True,
+                "label": "10",
+                "list": [1, 2, 3],
+                "words": ["a", "b"],
+                "wheel": {"radius": 0.1},
+            }
+        }
+    }
+
+
+def test_param_from_yaml_file(
+    evaluate_xml: EvaluateXml, packages: PackageIndex, tmp_path: Path
+) -> None:
+    params = tmp_path / "params.yaml"
+    params.write_text("/**:\n  ros__parameters:\n    a: 1\n")
+    xml = f'<launch><node pkg="demo" exec="talker"><param from="{params}"/></node></launch>'
+    spec = evaluate_xml(xml, packages=packages).processes[0]
+    args = ros_args(spec.cmd)
+    assert args[args.index("--params-file") + 1] == str(params)
+
+
+def test_push_ros_namespace_both_spellings_and_scoping(
+    evaluate_xml: EvaluateXml, packages: PackageIndex
+) -> None:
+    xml = """<launch>
+      <group>
+        <push_ros_namespace namespace="outer"/>
+        <group>
+          <push-ros-namespace namespace="inner"/>
+          <node pkg="demo" exec="talker" exec_name="deep"/>
+        </group>
+        <node pkg="demo" exec="talker" exec_name="mid" namespace="rel"/>
+        <node pkg="demo" exec="talker" exec_name="abs" namespace="/abs"/>
+      </group>
+      <node pkg="demo" exec="talker" exec_name="top"/>
+    </launch>"""
+    result = evaluate_xml(xml, packages=packages)
+    assert "__ns:=/outer/inner" in ros_args(result.process("deep").cmd)
+    assert "__ns:=/outer/rel" in ros_args(result.process("mid").cmd)
+    assert "__ns:=/abs" in ros_args(result.process("abs").cmd)
+    assert "--ros-args" not in result.process("top").cmd
+
+
+def test_set_parameter_set_remap_and_use_sim_time(
+    evaluate_xml: EvaluateXml, packages: PackageIndex
+) -> None:
+    xml = """<launch>
+      <group>
+        <set_parameter name="use_sim_time" value="false"/>
+        <set_use_sim_time value="true"/>
+        <set_parameter name="robot" value="wheel"/>
+        <set_remap from="scan" to="/base_scan"/>
+        <node pkg="demo" exec="talker" exec_name="inside"/>
+      </group>
+      <node pkg="demo" exec="talker" exec_name="outside"/>
+    </launch>"""
+    result = evaluate_xml(xml, packages=packages)
+    inside = result.process("inside").cmd
+    assert params_files(inside) == [
+        {"/**": {"ros__parameters": {"use_sim_time": True, "robot": "wheel"}}}
+    ]
+    assert "scan:=/base_scan" in ros_args(inside)
+    assert "--ros-args" not in result.process("outside").cmd
+
+
+def test_set_parameters_from_file(
+    evaluate_xml: EvaluateXml, packages: PackageIndex, tmp_path: Path
+) -> None:
+    params = tmp_path / "global.yaml"
+    params.write_text("/**:\n  ros__parameters:\n    g: 2\n")
+    xml = f"""<launch>
+      <set_parameters_from_file filename="{params}"/>
+      <node pkg="demo" exec="talker"/>
+    </launch>"""
+    spec = evaluate_xml(xml, packages=packages).processes[0]
+    assert str(params) in ros_args(spec.cmd)
+
+
+def test_unknown_executable_names_the_known_ones(
+    evaluate_xml: EvaluateXml, packages: PackageIndex
+) -> None:
+    with pytest.raises(Exception, match="executable 'listener' not found") as caught:
+        evaluate_xml('<launch><node pkg="demo" exec="listener"/></launch>', packages=packages)
+    assert "talker" in caught.value.format()  # type: ignore[attr-defined]
+
+
+def test_param_needs_name_or_from(evaluate_xml: EvaluateXml, packages: PackageIndex) -> None:
+    with pytest.raises(LaunchFileError, match="'name' or 'from'"):
+        evaluate_xml(
+            '<launch><node pkg="demo" exec="talker"><param value="1"/></node></launch>',
+            packages=packages,
+        )

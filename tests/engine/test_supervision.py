@@ -1,0 +1,154 @@
+"""Process tests that act on the launcher itself: SIGINT/SIGTERM/SIGHUP to it, a second
+Ctrl-C, the launcher SIGKILLed, its exit status, its screen output and its run-time errors.
+They drive ``launchkit run`` directly (tests/engine/launcher.py) because the pytest plugin
+owns those signals; everything else is in test_processes.py, through the plugin.
+
+Synchronisation is on what the launcher prints (each wait has a deadline); no sleeps.
+"""
+
+from __future__ import annotations
+
+import os
+import signal
+import sys
+from pathlib import Path
+
+import pytest
+
+from tests.engine.launcher import Launcher, alive, wait_gone
+
+PY = sys.executable
+
+IGNORE_SIGINT = (
+    "import signal, time; signal.signal(signal.SIGINT, signal.SIG_IGN); "
+    "{extra}print('ready', flush=True); time.sleep(300)"
+)
+
+
+def write(tmp_path: Path, body: str, name: str = "t.launch.xml") -> Path:
+    """A launch file with ``body`` inside ``<launch>``."""
+    path = tmp_path / name
+    path.write_text(f"<launch>\n{body}\n</launch>\n")
+    return path
+
+
+def executable(name: str, code: str, **attrs: str) -> str:
+    """An ``<executable>`` element running Python ``code``."""
+    extra = " ".join(f'{k}="{v}"' for k, v in attrs.items())
+    # The code goes inside a single-quoted shell word: its own quotes become double quotes.
+    escaped = code.replace("'", '"').replace("&", "&amp;").replace('"', "&quot;")
+    return f'<executable name="{name}" output="screen" {extra} cmd="{PY} -c \'{escaped}\'"/>'
+
+
+@pytest.fixture
+def run(tmp_path: Path):  # type: ignore[no-untyped-def]
+    """Start ``launchkit run`` on a launch file body; everything is killed at the end."""
+    started: list[Launcher] = []
+
+    def start(body: str, *args: str) -> Launcher:
+        launcher = Launcher(
+            str(write(tmp_path, body)), *args, cwd=tmp_path, env={"ROS_LOG_DIR": str(tmp_path)}
+        )
+        started.append(launcher)
+        return launcher
+
+    yield start
+    for launcher in started:
+        if launcher.proc.poll() is None:
+            launcher.kill()
+        launcher.close()
+        wait_gone(list(launcher.pids.values()))
+
+
+def test_screen_output_is_prefixed_and_in_order(run) -> None:  # type: ignore[no-untyped-def]
+    launcher = run(
+        '<executable name="first" output="screen" cmd="echo one"/>\n'
+        '<executable name="second" output="screen" cmd="sh -c \'echo two; exit 3\'"/>'
+    )
+    assert launcher.finish() == 0
+    text = launcher.text
+    started = text.index("[INFO] [first-1]: process started with pid [")
+    assert text.index("[first-1] one") > started
+    assert "[second-2] two" in text
+    assert "[ERROR] [second-2]: process has died [pid" in text and "exit code 3" in text
+    assert text.index("[first-1] one") < text.index(
+        "[INFO] [first-1]: process has finished cleanly"
+    )
+
+
+def test_all_well_exits_zero_after_timer_shutdown(run) -> None:  # type: ignore[no-untyped-def]
+    launcher = run(
+        '<executable name="sleeper" cmd="sleep 30"/>\n'
+        '<timer period="0.3"><shutdown reason="enough"/></timer>'
+    )
+    assert launcher.finish() == 0
+    assert "enough" in launcher.text
+    wait_gone(list(launcher.pids.values()))
+
+
+def test_missing_program_is_an_error(run) -> None:  # type: ignore[no-untyped-def]
+    launcher = run('<executable cmd="no-such-program-xyz --flag"/>')
+    assert launcher.finish() != 0
+    assert "no-such-program-xyz" in launcher.text
+
+
+def test_failed_required_process_gives_its_exit_code(run) -> None:  # type: ignore[no-untyped-def]
+    launcher = run(
+        '<executable name="sleeper" cmd="sleep 30"/>\n'
+        '<executable name="required" on_exit="shutdown" cmd="sh -c \'exit 7\'"/>'
+    )
+    assert launcher.finish() == 7
+    wait_gone(list(launcher.pids.values()))
+
+
+@pytest.mark.parametrize("signum", [signal.SIGINT, signal.SIGTERM, signal.SIGHUP])
+def test_signal_stops_everything(run, signum: int) -> None:  # type: ignore[no-untyped-def]
+    launcher = run(
+        executable("py", "import time; print('ready', flush=True); time.sleep(300)")
+        + '\n<executable name="sh" output="screen" '
+        "cmd=\"sh -c 'sleep 300 &amp; echo grandchild $!; wait'\"/>"
+    )
+    launcher.wait_line("[py-1] ready")
+    grandchild = int(launcher.wait_line("grandchild").split()[-1])
+    launcher.signal(signum)
+    assert launcher.finish() == 0
+    wait_gone([*launcher.pids.values(), grandchild])
+
+
+def test_second_ctrl_c_escalates_at_once(run) -> None:  # type: ignore[no-untyped-def]
+    stubborn = IGNORE_SIGINT.format(extra="")
+    launcher = run(executable("slow", stubborn, sigterm_timeout="60", sigkill_timeout="60"))
+    launcher.wait_line("[slow-1] ready")
+    launcher.signal(signal.SIGINT)
+    launcher.wait_line("SIGINT")
+    launcher.signal(signal.SIGINT)
+    waiting = launcher.wait_line("waiting for")
+    assert "slow-1" in waiting
+    assert launcher.finish(timeout=20) == 0
+    wait_gone(list(launcher.pids.values()))
+
+
+def test_launcher_killed_with_sigkill_leaves_no_orphans(run) -> None:  # type: ignore[no-untyped-def]
+    launcher = run(
+        executable("py", IGNORE_SIGINT.format(extra=""))
+        + '\n<executable name="sh" output="screen" '
+        "cmd=\"sh -c 'sleep 300 &amp; echo grandchild $!; wait'\"/>"
+    )
+    launcher.wait_line("[py-1] ready")
+    grandchild = int(launcher.wait_line("grandchild").split()[-1])
+    children = list(launcher.pids.values())
+    assert all(alive(pid) for pid in [*children, grandchild])
+    os.kill(launcher.proc.pid, signal.SIGKILL)
+    launcher.proc.wait(10)
+    wait_gone([*children, grandchild])
+
+
+def test_failing_command_substitution_at_run_time_stops_everything(run, tmp_path) -> None:  # type: ignore[no-untyped-def]
+    launcher = run(
+        '<executable name="sleeper" cmd="sleep 300"/>'
+        + '\n<timer period="0.2">\n  <log message="$(command \'false\')"/>\n</timer>'
+    )
+    assert launcher.finish() == 1
+    assert "t.launch.xml:4:" in launcher.text and "'false' failed" in launcher.text
+    assert "Traceback" not in launcher.text
+    wait_gone(list(launcher.pids.values()))

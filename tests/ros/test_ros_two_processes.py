@@ -1,0 +1,34 @@
+"""Two node processes talk through a router; remapping and namespaces apply across processes."""
+
+from __future__ import annotations
+
+from conftest import NODES_DIR, Child
+
+
+def test_talker_and_listener_processes_talk(router_endpoint: str, children: list[Child]) -> None:
+    listener = Child([str(NODES_DIR / "listener.py")])
+    children.append(listener)
+    talker = Child([str(NODES_DIR / "talker.py")])
+    children.append(talker)
+    line = listener.expect("heard: hello", timeout=15)
+    assert line.startswith("heard: hello ")
+    assert talker.stop() == 0
+    assert listener.stop() == 0
+
+
+def test_remapped_topic_across_processes(router_endpoint: str, children: list[Child]) -> None:
+    listener = Child(
+        [str(NODES_DIR / "listener.py"), "--ros-args", "-r", "__ns:=/robot", "-r", "chatter:=/news"]
+    )
+    children.append(listener)
+    talker = Child([str(NODES_DIR / "talker.py"), "--ros-args", "-r", "chatter:=news"])
+    children.append(talker)
+    assert listener.expect("heard: hello", timeout=15)
+
+
+def test_node_exits_promptly_on_sigint(router_endpoint: str, children: list[Child]) -> None:
+    talker = Child([str(NODES_DIR / "talker.py")])
+    children.append(talker)
+    talker.expect("talker ready", timeout=15)
+    assert talker.stop(timeout=5) == 0
+    assert any("talker done" in line for line in list(talker.lines.queue))

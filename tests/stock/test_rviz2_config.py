@@ -1,0 +1,92 @@
+"""Reading .rviz display configs: fixed frame, displays and their topics, clear errors."""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import pytest
+
+from launchkit.errors import UserError
+from launchkit.stock.rviz2.config import Display, load_config, parse_config
+
+SHIPPED = Path(__file__).parents[2] / "launchkit" / "stock" / "rviz2" / "config" / "robot.rviz"
+
+CONFIG = """
+Panels:
+  - Class: rviz_common/Displays
+Visualization Manager:
+  Class: ""
+  Displays:
+    - Class: rviz_default_plugins/Grid
+      Name: Grid
+      Enabled: true
+    - Class: rviz_default_plugins/RobotModel
+      Name: RobotModel
+      Enabled: true
+      Description Source: Topic
+      Description Topic:
+        Value: /robot_description
+    - Class: rviz_common/Group
+      Name: Sensors
+      Displays:
+        - Class: rviz_default_plugins/LaserScan
+          Name: LaserScan
+          Enabled: true
+          Topic:
+            Value: /scan
+        - Class: rviz_default_plugins/Image
+          Name: Camera
+          Enabled: false
+          Topic:
+            Value: /camera/image_raw
+  Global Options:
+    Fixed Frame: odom
+"""
+
+
+def test_fixed_frame_displays_and_topics() -> None:
+    config = parse_config(CONFIG)
+    assert config.fixed_frame == "odom"
+    assert Display("rviz_default_plugins/LaserScan", "LaserScan", True, "/scan") in config.displays
+    assert config.topics == ["/robot_description", "/scan"]
+
+
+def test_shipped_config_reads() -> None:
+    config = load_config(SHIPPED)
+    assert config.fixed_frame == "base"
+    assert "/robot_description" in config.topics
+
+
+@pytest.mark.parametrize(
+    ("text", "message"),
+    [
+        ("Visualization Manager: [unclosed", "not valid YAML"),
+        ("Panels: []\n", "no 'Visualization Manager' mapping"),
+        ("- just a list\n", "no 'Visualization Manager' mapping"),
+    ],
+)
+def test_malformed_configs_are_user_errors(text: str, message: str) -> None:
+    with pytest.raises(UserError, match=message) as caught:
+        parse_config(text, "robot.rviz")
+    assert caught.value.format().startswith("robot.rviz")
+
+
+def test_missing_file_names_the_path(tmp_path: Path) -> None:
+    with pytest.raises(UserError, match="cannot read the display config") as caught:
+        load_config(tmp_path / "nope.rviz")
+    assert str(tmp_path / "nope.rviz") in caught.value.format()
+
+
+def test_command_line_options_and_ros_args() -> None:
+    from launchkit.stock.rviz2.cli import parse_args
+
+    args = parse_args(["-d", "robot.rviz", "--ros-args", "-r", "__node:=viz", "--", "--port", "9"])
+    assert (args.display_config, args.port, args.fixed_frame) == (Path("robot.rviz"), 9, None)
+    assert parse_args(["-f", "odom"]).fixed_frame == "odom"
+
+
+def test_bad_option_is_a_user_error() -> None:
+    from launchkit.stock.rviz2.cli import parse_args
+
+    with pytest.raises(UserError, match="unrecognized arguments: --bogus"):
+        parse_args(["--bogus"])

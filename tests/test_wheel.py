@@ -1,0 +1,48 @@
+"""The installed wheel carries the robot package's share files: ``$(find-pkg-share
+robot_wheel)`` points inside site-packages and its launch files run from anywhere."""
+
+from __future__ import annotations
+
+import subprocess
+import sys
+import venv
+from pathlib import Path
+
+REPO = Path(__file__).resolve().parents[1]
+
+
+def run(*argv: str | Path, cwd: Path) -> subprocess.CompletedProcess[str]:
+    """Run a command to completion, failing the test with its output if it fails."""
+    result = subprocess.run(
+        [str(a) for a in argv], cwd=cwd, capture_output=True, text=True, timeout=600, check=False
+    )
+    assert result.returncode == 0, f"{argv} failed:\n{result.stdout}\n{result.stderr}"
+    return result
+
+
+def test_installed_wheel_has_the_robot_share_dir(tmp_path: Path) -> None:
+    run(sys.executable, "-m", "pip", "wheel", "-q", "--no-deps", "-w", tmp_path, REPO, cwd=tmp_path)
+    (wheel,) = tmp_path.glob("launchkit-*.whl")
+    env_dir = tmp_path / "venv"
+    venv.create(env_dir, with_pip=True)
+    python = env_dir / "bin" / "python"
+    run(python, "-m", "pip", "install", "-q", wheel, cwd=tmp_path)
+    elsewhere = tmp_path / "elsewhere"
+    elsewhere.mkdir()
+    share = Path(
+        run(
+            env_dir / "bin" / "launchkit", "pkg", "share", "robot_wheel", cwd=elsewhere
+        ).stdout.strip()
+    )
+    assert share.is_relative_to(env_dir), share
+    assert (share / "launch_xml" / "hello.launch.xml").is_file()
+    assert (share / "urdf" / "three_wheeled_robot.urdf").is_file()
+    ran = run(
+        env_dir / "bin" / "launchkit",
+        "run",
+        "robot_wheel",
+        "hello.launch.xml",
+        "count:=1",
+        cwd=elsewhere,
+    )
+    assert "[talker-1] Hello number 1" in ran.stdout

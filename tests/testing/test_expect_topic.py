@@ -1,0 +1,81 @@
+"""handle.expect_topic: the test joins the launch's own ROS network and collects messages."""
+
+from __future__ import annotations
+
+import sys
+from pathlib import Path
+
+import pytest
+
+from launchkit.testing import WaitTimeout
+
+TALKER = f"""#!{sys.executable}
+import launchkit.ros as ros
+from launchkit.ros.msgs.std_msgs.msg import String
+
+ros.init()
+node = ros.Node("talker")
+chatter = node.create_publisher(String, "chatter", 10)
+latched = node.create_publisher(
+    String, "latched", ros.QoSProfile(depth=1, durability=ros.DurabilityPolicy.TRANSIENT_LOCAL)
+)
+latched.publish(String(data="published once, at start"))
+count = [0]
+
+
+def tick():
+    count[0] += 1
+    chatter.publish(String(data=f"hello {{count[0]}}"))
+
+
+node.create_timer(0.05, tick)
+ros.spin(node)
+ros.shutdown()
+"""
+
+
+@pytest.fixture
+def talker_launch(tmp_path: Path) -> tuple[Path, dict[str, str]]:
+    """A launch file running a talker node from an AMENT_PREFIX_PATH package."""
+    prefix = tmp_path / "install"
+    index = prefix / "share" / "ament_index" / "resource_index" / "packages"
+    index.mkdir(parents=True)
+    (index / "demo").touch()
+    (prefix / "share" / "demo").mkdir()
+    script = prefix / "lib" / "demo" / "talker"
+    script.parent.mkdir(parents=True)
+    script.write_text(TALKER)
+    script.chmod(0o755)
+    path = tmp_path / "talk.launch.xml"
+    path.write_text('<launch><node pkg="demo" exec="talker" output="screen"/></launch>')
+    return path, {"AMENT_PREFIX_PATH": str(prefix)}
+
+
+def test_messages_arrive_and_can_be_filtered(launch, talker_launch) -> None:  # type: ignore[no-untyped-def]
+    path, env = talker_launch
+    handle = launch(path, env=env)
+    messages = handle.expect_topic(
+        "/chatter", min_messages=3, within=20, where=lambda m: m.data.startswith("hello")
+    )
+    assert len(messages) == 3
+    numbers = [int(m.data.split()[1]) for m in messages]
+    assert numbers == sorted(numbers)
+
+
+def test_a_latched_message_reaches_a_late_test(launch, talker_launch) -> None:  # type: ignore[no-untyped-def]
+    path, env = talker_launch
+    handle = launch(path, env=env)
+    handle.expect_topic("/chatter", within=20)  # the talker has long published its latched one
+    (message,) = handle.expect_topic("/latched", within=10)
+    assert message.data == "published once, at start"
+
+
+def test_a_silent_topic_fails_with_what_was_seen(launch, talker_launch) -> None:  # type: ignore[no-untyped-def]
+    path, env = talker_launch
+    handle = launch(path, env=env)
+    handle.expect_topic("/chatter", within=20)
+    with pytest.raises(WaitTimeout) as caught:
+        handle.expect_topic("/nothing_here", within=0.5)
+    text = str(caught.value)
+    assert "1 message(s) on /nothing_here" in text
+    assert "/chatter" in text and "talker" in text

@@ -1,0 +1,51 @@
+"""Launches never share a router or a ROS domain, in one test or across xdist workers."""
+
+from __future__ import annotations
+
+import pytest
+
+from launchkit.testing._deadline import TIMEOUT_SCALE_ENV, Deadline, scaled, timeout_scale
+
+
+def _printed(handle, variable: str) -> str:
+    line = handle.process("env").wait_output(f"{variable}=", timeout=5)
+    return line.split("=", 1)[1]
+
+
+def test_two_launches_in_parallel_stay_separate(launch):
+    first = launch("launch/isolation.launch.xml")
+    second = launch("launch/isolation.launch.xml")
+
+    assert _printed(first, "LAUNCHKIT_ROUTER") == first.router
+    assert _printed(second, "LAUNCHKIT_ROUTER") == second.router
+    assert first.router != second.router
+    assert first.router.startswith("tcp/127.0.0.1:")
+    assert _printed(first, "ROS_DOMAIN_ID") == str(first.domain_id)
+    assert _printed(second, "ROS_DOMAIN_ID") == str(second.domain_id)
+    assert first.domain_id != second.domain_id
+    assert first.process("env").pid != second.process("env").pid
+    assert first.output.keys() == second.output.keys() == {"env-1"}
+    assert first.ros_env == {
+        "LAUNCHKIT_ROUTER": first.router,
+        "ROS_DOMAIN_ID": str(first.domain_id),
+    }
+
+
+@pytest.mark.parametrize("run", range(20))
+def test_the_same_launch_passes_every_time(launch, run):
+    handle = launch("launch/talker.launch.xml", args={"count": 1})
+    handle.process("talker").wait_output("talker waiting", timeout=10)
+    handle.process("python3").wait_output("listener waiting", timeout=10)
+    handle.stop().assert_exit_codes({"*": 0})
+
+
+def test_the_timeout_scale_multiplies_every_deadline(monkeypatch):
+    monkeypatch.setenv(TIMEOUT_SCALE_ENV, "2.5")
+    assert timeout_scale() == 2.5
+    assert scaled(4) == 10.0
+    assert Deadline(4).seconds == 10.0
+    monkeypatch.setenv(TIMEOUT_SCALE_ENV, "fast")
+    with pytest.raises(ValueError, match="expected a positive number"):
+        timeout_scale()
+    monkeypatch.delenv(TIMEOUT_SCALE_ENV)
+    assert scaled(4) == 4.0

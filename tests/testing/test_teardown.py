@@ -1,0 +1,77 @@
+"""Teardown leaves nothing behind: escalation, grandchildren, and the survivor check."""
+
+from __future__ import annotations
+
+import os
+import signal
+from pathlib import Path
+
+import pytest
+
+from launchkit.testing import ProcessLeftBehind
+
+
+def _alive(pid: int) -> bool:
+    """Whether ``pid`` runs (a zombie waiting for its reaper does not)."""
+    try:
+        stat = Path(f"/proc/{pid}/stat").read_text()
+    except OSError:
+        return False
+    return stat[stat.rfind(")") + 2] not in "ZX"
+
+
+def test_a_child_ignoring_sigint_is_ended_by_the_escalation(launch):
+    handle = launch("launch/stubborn.launch.xml")
+    stubborn = handle.process("stubborn")
+    very_stubborn = handle.process("very_stubborn")
+    stubborn.wait_output("ignoring SIGINT", timeout=5)
+    very_stubborn.wait_output("ignoring SIGINT and SIGTERM", timeout=5)
+
+    result = handle.stop()
+
+    # SIGTERM ended the first after its sigterm_timeout; only SIGKILL the second, both sent
+    # by the launcher (the plugin's own SIGKILL would leave no exit code to report)
+    result.assert_exit_codes({"stubborn": -signal.SIGTERM, "very_stubborn": -signal.SIGKILL})
+    assert not _alive(stubborn.pid) and not _alive(very_stubborn.pid)
+    launcher = Path(handle.launcher_log).read_text()
+    assert "escalating to 'SIGTERM'" in launcher and "escalating to 'SIGKILL'" in launcher
+    assert handle.stop_notes == []  # the launcher needed no help from the plugin
+
+
+def test_a_grandchild_started_through_sh_does_not_survive(launch):
+    handle = launch("launch/grandchild.launch.xml")
+    line = handle.process("shell").wait_output("grandchild", timeout=5)
+    grandchild = int(line.split()[1])
+    assert _alive(grandchild)
+
+    handle.stop()
+
+    assert not _alive(grandchild)
+
+
+def test_a_process_escaping_its_group_fails_the_teardown_and_is_killed(launch):
+    handle = launch("launch/escape.launch.xml")
+    line = handle.process("escaper").wait_output("escaped pid", timeout=5)
+    escaped = int(line.split()[-1])
+    assert os.getpgid(escaped) == escaped  # left the launcher's reach, still in the session
+
+    with pytest.raises(ProcessLeftBehind) as caught:
+        handle.stop()
+
+    message = str(caught.value)
+    assert f"pid {escaped} " in message and "survived its teardown" in message
+    assert "os.setpgid(0, 0)" in message  # its command line
+    assert not _alive(escaped)
+
+
+def test_a_hanging_launcher_is_escalated_by_the_plugin(launch):
+    handle = launch("launch/talker.launch.xml")
+    talker = handle.process("talker")
+    talker.wait_output("talker waiting", timeout=5)
+    os.kill(handle.pid, signal.SIGSTOP)  # the launcher can no longer react to anything
+
+    result = handle.stop(timeout=0.5)
+
+    assert "sent SIGTERM" in handle.stop_notes[0] and "SIGKILL" in handle.stop_notes[1]
+    assert result.returncode == -signal.SIGKILL
+    assert not _alive(talker.pid)
