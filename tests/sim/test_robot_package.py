@@ -54,19 +54,7 @@ def test_xacro_variant_expands_to_the_same_robot() -> None:
 
 
 @pytest.mark.parametrize(
-    "name",
-    [
-        pytest.param(
-            "gazebo_and_rviz.launch.xml",
-            marks=pytest.mark.xfail(
-                strict=True,
-                reason="includes gazebo_ros's gazebo.launch.py: needs the engine's .launch.py "
-                "loader (the lead's part of issue 5); remove this mark when it lands",
-            ),
-        ),
-        "gazebo.launch.xml",
-        "display.launch.xml",
-    ],
+    "name", ["gazebo_and_rviz.launch.xml", "gazebo.launch.xml", "display.launch.xml"]
 )
 def test_robot_launch_files_pass_the_checks(name: str) -> None:
     from launchkit.cli import main

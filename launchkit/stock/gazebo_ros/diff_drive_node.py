@@ -41,7 +41,9 @@ class DiffDriveNode:
             values[name] = node.declare_parameter(name, getattr(defaults, name)).value
         self.params = DiffDriveParams.from_parameters(values)
         self.controller: DiffDriveController | None = None
-        self.base: BaseState | None = None
+        # Ground truth and joint states of one sim instant, paired by stamp (nanoseconds).
+        self._truths: dict[int, BaseState] = {}
+        self._states: dict[int, Any] = {}
         p = self.params
         self.odom_pub = node.create_publisher(_msg("nav_msgs", "Odometry"), p.odometry_topic, 1)
         self.tf_pub = node.create_publisher(_msg("tf2_msgs", "TFMessage"), "/tf", 100)
@@ -73,16 +75,31 @@ class DiffDriveNode:
 
     def _truth(self, msg: Any) -> None:
         pose, twist = msg.pose.pose, msg.twist.twist
-        self.base = BaseState(
+        key = _nanoseconds(msg)
+        self._truths[key] = BaseState(
             (pose.position.x, pose.position.y, pose.position.z),
             (pose.orientation.x, pose.orientation.y, pose.orientation.z, pose.orientation.w),
             (twist.linear.x, twist.linear.y, twist.linear.z),
             (twist.angular.x, twist.angular.y, twist.angular.z),
         )
+        self._pair(key)
 
     def _joints(self, msg: Any) -> None:
-        if self.base is None:
+        key = _nanoseconds(msg)
+        self._states[key] = msg
+        self._pair(key)
+
+    def _pair(self, key: int) -> None:
+        if key not in self._states or key not in self._truths:
             return
+        msg, base = self._states.pop(key), self._truths.pop(key)
+        for stale in [k for k in self._states if k < key]:
+            del self._states[stale]
+        for stale in [k for k in self._truths if k < key]:
+            del self._truths[stale]
+        self._step(msg, base)
+
+    def _step(self, msg: Any, base: BaseState) -> None:
         now = messages.seconds_of(msg.header.stamp)
         if self.controller is None or now < self.controller.start_time:
             # First state, or the world was reset: start over at this sim time.
@@ -101,7 +118,7 @@ class DiffDriveNode:
                 f"joint states lack '{p.left_joint}' or '{p.right_joint}' (have {names})"
             )
             return
-        update = self.controller.update(now, wheels, self.base)
+        update = self.controller.update(now, wheels, base)
         if update is None:
             return
         command = update.command
@@ -119,6 +136,10 @@ class DiffDriveNode:
             self.odom_pub.publish(messages.odometry(update.odometry))
         if p.publish_odom_tf:
             self.tf_pub.publish(messages.transform(update.odometry))
+
+
+def _nanoseconds(msg: Any) -> int:
+    return int(msg.header.stamp.sec) * 1_000_000_000 + int(msg.header.stamp.nanosec)
 
 
 def main(argv: list[str] | None = None) -> int:

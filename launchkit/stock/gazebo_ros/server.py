@@ -254,6 +254,11 @@ class SimServer:
                 pubs[c.info_topic].publish(messages.camera_info(c, now))
 
     def _publish_state(self, now: float, runtime: _Runtime) -> None:
+        # The diff drive pairs these two by stamp.
+        base = self.sim.base_state(runtime.entity)
+        runtime.truth_pub.publish(
+            messages.odometry(_ground_truth(now, runtime.entity.spec.root_link, base))
+        )
         states = self.sim.joint_states(runtime.entity)
         names = list(states)
         runtime.state_pub.publish(
@@ -265,9 +270,6 @@ class SimServer:
                 [states[n][2] for n in names],
             )
         )
-        base = self.sim.base_state(runtime.entity)
-        truth = messages.odometry(_ground_truth(now, runtime.entity.spec.root_link, base))
-        runtime.truth_pub.publish(truth)
 
     def run(self) -> None:
         """Step, publish and pace until shutdown."""
@@ -329,15 +331,20 @@ def main(argv: list[str] | None = None) -> int:
     ros = importlib.import_module("launchkit.ros")
     ros.init(args=[sys.argv[0], *argv])
     server: SimServer | None = None
-    try:
-        server = SimServer(ros, options)
+    stop_requested = False
 
-        def _stop(_signum: int, _frame: object) -> None:
-            assert server is not None
+    def _stop(_signum: int, _frame: object) -> None:
+        nonlocal stop_requested
+        stop_requested = True
+        if server is not None:
             server.running = False
 
-        signal.signal(signal.SIGTERM, _stop)
-        signal.signal(signal.SIGINT, _stop)
+    # Installed before the (slow) world load, so an early Ctrl-C still ends cleanly.
+    signal.signal(signal.SIGTERM, _stop)
+    signal.signal(signal.SIGINT, _stop)
+    try:
+        server = SimServer(ros, options)
+        server.running = not stop_requested
         server.run()
     except ModelError as exc:
         print(f"gazebo: error: {exc}", file=sys.stderr)

@@ -84,6 +84,19 @@ def _read_topic(ros: Any, node: Any, topic: str, timeout: float) -> str:
     return received[0]
 
 
+def _call(client: Any, request: Any, deadline: float) -> Any:
+    services = importlib.import_module("launchkit.ros.services")
+    while True:
+        try:
+            return client.call(request, timeout_sec=60.0)
+        except services.ServiceCallError as exc:
+            # "No response" means no server took the request: the server's liveliness token can
+            # reach us before its queryable does. Anything else is final.
+            if "no response" not in str(exc) or time.monotonic() > deadline:
+                raise SpawnError(f"calling /spawn_entity failed: {exc}") from None
+        time.sleep(0.1)
+
+
 def spawn(ros: Any, args: argparse.Namespace) -> str:
     """Do the spawn; the service's status message on success, :class:`SpawnError` otherwise."""
     node = ros.Node("spawn_entity")
@@ -117,7 +130,7 @@ def spawn(ros: Any, args: argparse.Namespace) -> str:
         reference_frame=args.reference_frame,
     )
     node.get_logger().info("Calling service /spawn_entity")
-    response = client.call(request)
+    response = _call(client, request, time.monotonic() + args.spawn_service_timeout)
     if not response.success:
         raise SpawnError(str(response.status_message))
     return str(response.status_message)
