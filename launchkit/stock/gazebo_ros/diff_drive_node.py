@@ -1,0 +1,163 @@
+"""``diff_drive``: the diff drive plugin as its own node process.
+
+Reads ``cmd_vel`` (or ``command_topic``), the simulator's joint states and ground truth for
+entity ``entity``, runs :class:`DiffDriveController` on each joint state (stamped with sim time),
+sends the wheel velocity targets back to the simulator and publishes ``odom`` and the
+``odom -> base`` transform. The simulator server starts one per diff drive plugin; it also runs
+alone: ``launchkit exec gazebo_ros diff_drive --ros-args -p entity:=NAME -p left_joint:=... ``.
+"""
+
+from __future__ import annotations
+
+import importlib
+import sys
+from typing import Any
+
+from launchkit.stock.gazebo_ros import messages
+from launchkit.stock.gazebo_ros.diff_drive import (
+    BaseState,
+    DiffDriveConfigError,
+    DiffDriveController,
+    DiffDriveParams,
+)
+
+
+def _msg(package: str, name: str) -> Any:
+    return getattr(importlib.import_module(f"launchkit.ros.msgs.{package}.msg"), name)
+
+
+class DiffDriveNode:
+    """Wires a :class:`DiffDriveController` to the simulator's topics."""
+
+    def __init__(self, ros: Any) -> None:
+        self.node = ros.Node("gazebo_ros_diff_drive")
+        node = self.node
+        entity = str(node.declare_parameter("entity", "").value)
+        if not entity:
+            raise DiffDriveConfigError("diff drive: parameter 'entity' is required (a model name)")
+        defaults = DiffDriveParams("", "")
+        values: dict[str, object] = {}
+        for name in DiffDriveParams.__dataclass_fields__:
+            values[name] = node.declare_parameter(name, getattr(defaults, name)).value
+        self.params = DiffDriveParams.from_parameters(values)
+        self.controller: DiffDriveController | None = None
+        # Ground truth and joint states of one sim instant, paired by stamp (nanoseconds).
+        self._truths: dict[int, BaseState] = {}
+        self._states: dict[int, Any] = {}
+        p = self.params
+        self.odom_pub = node.create_publisher(_msg("nav_msgs", "Odometry"), p.odometry_topic, 1)
+        self.tf_pub = node.create_publisher(_msg("tf2_msgs", "TFMessage"), "/tf", 100)
+        joint_state = _msg("sensor_msgs", "JointState")
+        self.command_pub = node.create_publisher(
+            joint_state, messages.COMMAND_TOPIC.format(entity=entity), 10
+        )
+        node.create_subscription(_msg("geometry_msgs", "Twist"), p.command_topic, self._cmd, 1)
+        node.create_subscription(
+            _msg("nav_msgs", "Odometry"),
+            messages.GROUND_TRUTH_TOPIC.format(entity=entity),
+            self._truth,
+            10,
+        )
+        node.create_subscription(
+            joint_state, messages.STATE_TOPIC.format(entity=entity), self._joints, 10
+        )
+        node.get_logger().info(
+            f"driving '{entity}': {p.left_joint}/{p.right_joint}, separation "
+            f"{p.wheel_separation} m, diameter {p.wheel_diameter} m, {p.update_rate} Hz, "
+            f"{p.odometry_frame} -> {p.robot_base_frame} on '{p.odometry_topic}'"
+        )
+        self._pending_command = (0.0, 0.0)
+
+    def _cmd(self, msg: Any) -> None:
+        self._pending_command = (float(msg.linear.x), float(msg.angular.z))
+        if self.controller is not None:
+            self.controller.set_command(*self._pending_command)
+
+    def _truth(self, msg: Any) -> None:
+        pose, twist = msg.pose.pose, msg.twist.twist
+        key = _nanoseconds(msg)
+        self._truths[key] = BaseState(
+            (pose.position.x, pose.position.y, pose.position.z),
+            (pose.orientation.x, pose.orientation.y, pose.orientation.z, pose.orientation.w),
+            (twist.linear.x, twist.linear.y, twist.linear.z),
+            (twist.angular.x, twist.angular.y, twist.angular.z),
+        )
+        self._pair(key)
+
+    def _joints(self, msg: Any) -> None:
+        key = _nanoseconds(msg)
+        self._states[key] = msg
+        self._pair(key)
+
+    def _pair(self, key: int) -> None:
+        if key not in self._states or key not in self._truths:
+            return
+        msg, base = self._states.pop(key), self._truths.pop(key)
+        for stale in [k for k in self._states if k < key]:
+            del self._states[stale]
+        for stale in [k for k in self._truths if k < key]:
+            del self._truths[stale]
+        self._step(msg, base)
+
+    def _step(self, msg: Any, base: BaseState) -> None:
+        now = messages.seconds_of(msg.header.stamp)
+        if self.controller is None or now < self.controller.start_time:
+            # First state, or the world was reset: start over at this sim time.
+            self.controller = DiffDriveController(self.params, start_time=now)
+            self.controller.set_command(*self._pending_command)
+        names = list(msg.name)
+        velocities = list(msg.velocity)
+        p = self.params
+        try:
+            wheels = (
+                velocities[names.index(p.left_joint)],
+                velocities[names.index(p.right_joint)],
+            )
+        except (ValueError, IndexError):
+            self.node.get_logger().error(
+                f"joint states lack '{p.left_joint}' or '{p.right_joint}' (have {names})"
+            )
+            return
+        update = self.controller.update(now, wheels, base)
+        if update is None:
+            return
+        command = update.command
+        joints = list(command.velocities)
+        self.command_pub.publish(
+            messages.joint_state(
+                now,
+                joints,
+                [0.0] * len(joints),
+                [command.velocities[j] for j in joints],
+                [command.max_torque] * len(joints),
+            )
+        )
+        if p.publish_odom:
+            self.odom_pub.publish(messages.odometry(update.odometry))
+        if p.publish_odom_tf:
+            self.tf_pub.publish(messages.transform(update.odometry))
+
+
+def _nanoseconds(msg: Any) -> int:
+    return int(msg.header.stamp.sec) * 1_000_000_000 + int(msg.header.stamp.nanosec)
+
+
+def main(argv: list[str] | None = None) -> int:
+    """Entry point of ``diff_drive``."""
+    ros = importlib.import_module("launchkit.ros")
+    ros.init(args=sys.argv if argv is None else argv)
+    try:
+        node = DiffDriveNode(ros)
+        ros.spin(node.node)
+    except DiffDriveConfigError as exc:
+        print(f"diff_drive: error: {exc}", file=sys.stderr)
+        return 2
+    except KeyboardInterrupt:
+        pass
+    finally:
+        ros.shutdown()
+    return 0
+
+
+if __name__ == "__main__":
+    raise SystemExit(main())

@@ -1,0 +1,177 @@
+"""Conversions from the simulation core's plain values to ROS messages (launchkit.ros types).
+
+Numeric arrays are numpy arrays of the field's type, which is what the typestore's CDR
+serializer expects.
+"""
+
+from __future__ import annotations
+
+import importlib
+import math
+from typing import Any
+
+import numpy as np
+
+from launchkit.stock.gazebo_ros.diff_drive import Odometry
+from launchkit.stock.gazebo_ros.sim.sensors import CameraConfig, LidarConfig
+
+
+def _type(package: str, name: str) -> Any:
+    """Message class ``package/msg/name`` of the ROS layer (imported on first use)."""
+    return getattr(importlib.import_module(f"launchkit.ros.msgs.{package}.msg"), name)
+
+
+#: Topics between the simulator and the diff drive node process, per entity.
+STATE_TOPIC = "/gazebo/{entity}/joint_states"
+GROUND_TRUTH_TOPIC = "/gazebo/{entity}/ground_truth"
+COMMAND_TOPIC = "/gazebo/{entity}/joint_commands"
+
+
+def stamp(seconds: float) -> Any:
+    """A ``builtin_interfaces/Time`` for ``seconds`` of sim time."""
+    Time = _type("builtin_interfaces", "Time")
+
+    nanoseconds = round(seconds * 1e9)
+    return Time(sec=nanoseconds // 1_000_000_000, nanosec=nanoseconds % 1_000_000_000)
+
+
+def seconds_of(time_msg: Any) -> float:
+    """Seconds of a ``builtin_interfaces/Time``."""
+    return float(time_msg.sec) + float(time_msg.nanosec) * 1e-9
+
+
+def header(seconds: float, frame_id: str) -> Any:
+    """A ``std_msgs/Header``."""
+    Header = _type("std_msgs", "Header")
+
+    return Header(stamp=stamp(seconds), frame_id=frame_id)
+
+
+def clock(seconds: float) -> Any:
+    """A ``rosgraph_msgs/Clock``."""
+    Clock = _type("rosgraph_msgs", "Clock")
+
+    return Clock(clock=stamp(seconds))
+
+
+def odometry(odom: Odometry) -> Any:
+    """A ``nav_msgs/Odometry`` from the diff drive's odometry."""
+    Point = _type("geometry_msgs", "Point")
+    Pose = _type("geometry_msgs", "Pose")
+    PoseWithCovariance = _type("geometry_msgs", "PoseWithCovariance")
+    Quaternion = _type("geometry_msgs", "Quaternion")
+    Twist = _type("geometry_msgs", "Twist")
+    TwistWithCovariance = _type("geometry_msgs", "TwistWithCovariance")
+    Vector3 = _type("geometry_msgs", "Vector3")
+    OdometryMsg = _type("nav_msgs", "Odometry")
+
+    return OdometryMsg(
+        header=header(odom.stamp, odom.frame_id),
+        child_frame_id=odom.child_frame_id,
+        pose=PoseWithCovariance(
+            pose=Pose(position=Point(*odom.position), orientation=Quaternion(*odom.orientation)),
+            covariance=np.array(odom.pose_covariance, dtype=np.float64),
+        ),
+        twist=TwistWithCovariance(
+            twist=Twist(linear=Vector3(*odom.linear), angular=Vector3(*odom.angular)),
+            covariance=np.array(odom.twist_covariance, dtype=np.float64),
+        ),
+    )
+
+
+def transform(odom: Odometry) -> Any:
+    """A ``tf2_msgs/TFMessage`` with the odometry's ``frame_id -> child_frame_id`` transform."""
+    Quaternion = _type("geometry_msgs", "Quaternion")
+    Transform = _type("geometry_msgs", "Transform")
+    TransformStamped = _type("geometry_msgs", "TransformStamped")
+    Vector3 = _type("geometry_msgs", "Vector3")
+    TFMessage = _type("tf2_msgs", "TFMessage")
+
+    return TFMessage(
+        transforms=[
+            TransformStamped(
+                header=header(odom.stamp, odom.frame_id),
+                child_frame_id=odom.child_frame_id,
+                transform=Transform(
+                    translation=Vector3(*odom.position), rotation=Quaternion(*odom.orientation)
+                ),
+            )
+        ]
+    )
+
+
+def laser_scan(config: LidarConfig, seconds: float, ranges: list[float]) -> Any:
+    """A ``sensor_msgs/LaserScan`` as gazebo_ros_ray_sensor fills it."""
+    LaserScan = _type("sensor_msgs", "LaserScan")
+
+    return LaserScan(
+        header=header(seconds, config.frame_id),
+        angle_min=config.min_angle,
+        angle_max=config.max_angle,
+        angle_increment=config.angle_increment,
+        time_increment=0.0,
+        scan_time=0.0,
+        range_min=config.range_min,
+        range_max=config.range_max,
+        ranges=np.array(ranges, dtype=np.float32),
+        intensities=np.zeros(len(ranges), dtype=np.float32),
+    )
+
+
+def image(config: CameraConfig, seconds: float, data: bytes) -> Any:
+    """A ``sensor_msgs/Image`` of one rendered frame."""
+    Image = _type("sensor_msgs", "Image")
+
+    return Image(
+        header=header(seconds, config.frame_id),
+        height=config.height,
+        width=config.width,
+        encoding=config.encoding,
+        is_bigendian=0,
+        step=config.width * config.channels,
+        data=np.frombuffer(data, dtype=np.uint8),
+    )
+
+
+def camera_info(config: CameraConfig, seconds: float) -> Any:
+    """A ``sensor_msgs/CameraInfo`` as gazebo_ros_camera fills it (plumb_bob, no distortion)."""
+    CameraInfo = _type("sensor_msgs", "CameraInfo")
+
+    k, p = config.intrinsics()
+    return CameraInfo(
+        header=header(seconds, config.frame_id),
+        height=config.height,
+        width=config.width,
+        distortion_model="plumb_bob",
+        d=np.zeros(5, dtype=np.float64),
+        k=np.array(k, dtype=np.float64),
+        r=np.array([1.0, 0, 0, 0, 1.0, 0, 0, 0, 1.0], dtype=np.float64),
+        p=np.array(p, dtype=np.float64),
+    )
+
+
+def joint_state(
+    seconds: float,
+    names: list[str],
+    positions: list[float],
+    velocities: list[float],
+    efforts: list[float],
+) -> Any:
+    """A ``sensor_msgs/JointState``."""
+    JointState = _type("sensor_msgs", "JointState")
+
+    return JointState(
+        header=header(seconds, ""),
+        name=list(names),
+        position=np.array(positions, dtype=np.float64),
+        velocity=np.array(velocities, dtype=np.float64),
+        effort=np.array(efforts, dtype=np.float64),
+    )
+
+
+def euler_from_quaternion(x: float, y: float, z: float, w: float) -> tuple[float, float, float]:
+    """(roll, pitch, yaw) of a quaternion."""
+    roll = math.atan2(2 * (w * x + y * z), 1 - 2 * (x * x + y * y))
+    pitch = math.asin(max(-1.0, min(1.0, 2 * (w * y - z * x))))
+    yaw = math.atan2(2 * (w * z + x * y), 1 - 2 * (y * y + z * z))
+    return roll, pitch, yaw

@@ -1,0 +1,360 @@
+"""``gzserver`` / ``gazebo``: the simulator server node (PyBullet in place of Gazebo).
+
+Accepts Gazebo's command line (``gazebo --verbose -s libgazebo_ros_init.so -s
+libgazebo_ros_factory.so [WORLD]``) and ROS arguments after ``--ros-args``. With the init plugin it
+publishes ``/clock``; with the factory plugin it serves ``/spawn_entity`` and ``/delete_entity``.
+Spawned models get their sensors published and their diff drive run as a child node
+(:mod:`plugin_processes`). Parameters: ``real_time_factor`` (1.0; 0 = as fast as possible),
+``publish_rate`` (/clock Hz, 10), ``time_step`` (s, 1/240), ``state_rate`` (Hz of the joint states
+the diff drive reads, 100), ``gui`` (false), ``egl`` (false), ``world``.
+"""
+
+from __future__ import annotations
+
+import argparse
+import importlib
+import os
+import signal
+import sys
+from collections.abc import Callable
+from dataclasses import dataclass, field
+from typing import Any
+
+from launchkit.stock.gazebo_ros import messages
+from launchkit.stock.gazebo_ros.plugin_processes import PluginProcesses
+from launchkit.stock.gazebo_ros.sim.engine import Entity, Simulation, SimulationError
+from launchkit.stock.gazebo_ros.sim.model import ModelError
+from launchkit.stock.gazebo_ros.sim.pacing import Pacer
+from launchkit.stock.gazebo_ros.sim.plugins import EntityPlugins, load_plugins
+from launchkit.stock.gazebo_ros.sim.sensors import CameraConfig, RateGate
+from launchkit.stock.gazebo_ros.sim.world import load_world, resolve_world
+
+INIT_PLUGIN = "libgazebo_ros_init.so"
+FACTORY_PLUGIN = "libgazebo_ros_factory.so"
+
+
+class UsageError(Exception):
+    """A bad command line (exit status 2)."""
+
+
+@dataclass(frozen=True)
+class ServerOptions:
+    """The Gazebo-style part of the command line."""
+
+    world: str = "empty"
+    verbose: bool = False
+    server_plugins: tuple[str, ...] = ()
+    gui: bool = False
+    paused: bool = False
+
+    @property
+    def ros_init(self) -> bool:
+        """Whether ``/clock`` is published (``-s libgazebo_ros_init.so``, or no ``-s`` at all)."""
+        return not self.server_plugins or INIT_PLUGIN in self.server_plugins
+
+    @property
+    def factory(self) -> bool:
+        """Whether the spawn/delete services exist."""
+        return not self.server_plugins or FACTORY_PLUGIN in self.server_plugins
+
+
+class _Parser(argparse.ArgumentParser):
+    def error(self, message: str) -> Any:  # type: ignore[override]
+        raise UsageError(message)
+
+
+def parse_server_args(argv: list[str]) -> ServerOptions:
+    """Parse Gazebo's options (everything before ``--ros-args``); :class:`UsageError` if bad."""
+    if "--ros-args" in argv:
+        argv = argv[: argv.index("--ros-args")]
+    parser = _Parser(prog="gazebo", add_help=False)
+    parser.add_argument("world", nargs="?", default="")
+    parser.add_argument("--verbose", action="store_true")
+    parser.add_argument("-s", "--server-plugin", action="append", default=[])
+    parser.add_argument("-g", "--gui-plugin", action="append", default=[])
+    parser.add_argument("-u", "--pause", action="store_true")
+    parser.add_argument("--gui", action="store_true")
+    args = parser.parse_args(argv)
+    return ServerOptions(
+        world=args.world or "empty",
+        verbose=args.verbose,
+        server_plugins=tuple(p.strip() for p in args.server_plugin),
+        gui=args.gui,
+        paused=args.pause,
+    )
+
+
+@dataclass
+class _Runtime:
+    """One spawned entity's publishers and plugins."""
+
+    entity: Entity
+    plugins: EntityPlugins
+    state_pub: Any
+    truth_pub: Any
+    sensor_pubs: dict[str, Any] = field(default_factory=dict)
+
+
+class SimServer:
+    """The node: owns the :class:`Simulation` from one thread and paces it."""
+
+    def __init__(self, ros: Any, options: ServerOptions) -> None:
+        self.ros = ros
+        self.node = ros.Node("gazebo")
+        self.logger = self.node.get_logger()
+        p = self.node
+        rtf = float(p.declare_parameter("real_time_factor", 1.0).value)
+        publish_rate = float(p.declare_parameter("publish_rate", 10.0).value)
+        time_step = float(p.declare_parameter("time_step", 1.0 / 240.0).value)
+        state_rate = float(p.declare_parameter("state_rate", 100.0).value)
+        gui = bool(p.declare_parameter("gui", options.gui).value)
+        egl = bool(p.declare_parameter("egl", False).value)
+        world_name = str(p.declare_parameter("world", options.world).value) or "empty"
+        p.declare_parameter("verbose", options.verbose)
+        if bool(p.declare_parameter("pause", options.paused).value):
+            self.logger.warn("starting paused is not supported; the world runs")
+        if gui and not os.environ.get("DISPLAY"):
+            self.logger.warn("a GUI was asked for but there is no DISPLAY; running headless")
+            gui = False
+        world = load_world(resolve_world(world_name))
+        self.sim = Simulation(world, time_step=time_step, gui=gui, egl=egl, log=self.logger.info)
+        self.logger.info(
+            f"world '{world.name}' loaded ({len(world.shapes)} obstacles), step {time_step:.5f} s, "
+            f"real-time factor {rtf if rtf > 0 else 'unlimited'}"
+        )
+        self.pacer = Pacer(rtf)
+        self.clock_gate = RateGate(publish_rate)
+        self.state_rate = state_rate
+        self.state_gates: dict[str, RateGate] = {}
+        self.runtimes: dict[str, _Runtime] = {}
+        self.children = PluginProcesses(self.logger.info)
+        self.sensor_qos = ros.QoSProfile(depth=5, reliability=ros.ReliabilityPolicy.RELIABLE)
+        self.clock_pub = None
+        if options.ros_init:
+            clock_qos = ros.QoSProfile(depth=1, durability=ros.DurabilityPolicy.TRANSIENT_LOCAL)
+            self.clock_pub = p.create_publisher(_msg("rosgraph_msgs", "Clock"), "/clock", clock_qos)
+        if options.factory:
+            services = importlib.import_module("launchkit.ros.msgs.gazebo_msgs.srv")
+            SpawnEntity, DeleteEntity = services.SpawnEntity, services.DeleteEntity
+            p.create_service(SpawnEntity, "/spawn_entity", self._spawn)
+            p.create_service(DeleteEntity, "/delete_entity", self._delete)
+        self.running = True
+
+    # -- services --------------------------------------------------------------------------
+
+    def _spawn(self, request: Any, response: Any) -> Any:
+        name = str(request.name)
+        xml = str(request.xml)
+        try:
+            if xml.lstrip().startswith("<sdf") or "<sdf" in xml[:200]:
+                raise SimulationError("SDF models are not supported (expected a URDF <robot>)")
+            pose = request.initial_pose
+            roll, pitch, yaw = messages.euler_from_quaternion(
+                pose.orientation.x, pose.orientation.y, pose.orientation.z, pose.orientation.w
+            )
+            if pose.orientation.w == 0 and pose.orientation.z == 0 and pose.orientation.x == 0:
+                roll = pitch = yaw = 0.0  # an all-zero quaternion means "no rotation"
+            entity = self.sim.spawn(
+                name, xml, (pose.position.x, pose.position.y, pose.position.z, roll, pitch, yaw)
+            )
+            try:
+                plugins = load_plugins(self.sim, entity, self.logger.info)
+            except SimulationError:
+                self.sim.delete(name)
+                raise
+        except (SimulationError, ModelError) as exc:
+            self.logger.error(f"SpawnEntity: failed to spawn [{name}]: {exc}")
+            response.success = False
+            response.status_message = f"SpawnEntity: {exc}"
+            return response
+        self._start_runtime(entity, plugins)
+        response.success = True
+        response.status_message = f"SpawnEntity: Successfully spawned entity [{name}]"
+        self.logger.info(response.status_message)
+        return response
+
+    def _delete(self, request: Any, response: Any) -> Any:
+        name = str(request.name)
+        try:
+            self.sim.delete(name)
+        except SimulationError as exc:
+            response.success = False
+            response.status_message = f"DeleteEntity: {exc}"
+            return response
+        self.children.stop_entity(name)
+        self.runtimes.pop(name, None)
+        response.success = True
+        response.status_message = f"DeleteEntity: Successfully deleted entity [{name}]"
+        self.logger.info(response.status_message)
+        return response
+
+    def _start_runtime(self, entity: Entity, plugins: EntityPlugins) -> None:
+        p, name = self.node, entity.name
+        joint_state = _msg("sensor_msgs", "JointState")
+        odometry = _msg("nav_msgs", "Odometry")
+        runtime = _Runtime(
+            entity,
+            plugins,
+            p.create_publisher(joint_state, messages.STATE_TOPIC.format(entity=name), 10),
+            p.create_publisher(odometry, messages.GROUND_TRUTH_TOPIC.format(entity=name), 10),
+        )
+        p.create_subscription(
+            joint_state,
+            messages.COMMAND_TOPIC.format(entity=name),
+            lambda msg, n=name: self._command(n, msg),
+            10,
+        )
+        for lidar in plugins.lidars:
+            runtime.sensor_pubs[lidar.config.topic] = p.create_publisher(
+                _msg("sensor_msgs", "LaserScan"), lidar.config.topic, self.sensor_qos
+            )
+        for camera in plugins.cameras:
+            c = camera.config
+            runtime.sensor_pubs[c.image_topic] = p.create_publisher(
+                _msg("sensor_msgs", "Image"), c.image_topic, self.sensor_qos
+            )
+            runtime.sensor_pubs[c.info_topic] = p.create_publisher(
+                _msg("sensor_msgs", "CameraInfo"), c.info_topic, self.sensor_qos
+            )
+        self.runtimes[name] = runtime
+        self.state_gates[name] = RateGate(self.state_rate)
+        for plugin, params in plugins.diff_drives:
+            self.children.start_diff_drive(name, plugin, params)
+
+    def _command(self, entity: str, msg: Any) -> None:
+        runtime = self.runtimes.get(entity)
+        if runtime is None:
+            return
+        names = list(msg.name)
+        velocities = list(msg.velocity)
+        efforts = list(msg.effort)
+        force = max(efforts) if efforts else 5.0
+        try:
+            self.sim.set_joint_velocities(
+                runtime.entity, dict(zip(names, velocities, strict=False)), force
+            )
+        except SimulationError as exc:
+            self.logger.warn(f"joint command for '{entity}' ignored: {exc}")
+
+    # -- loop ------------------------------------------------------------------------------
+
+    def _publish(self, now: float) -> None:
+        if self.clock_pub is not None and self.clock_gate.due(now):
+            self.clock_pub.publish(messages.clock(now))
+        for name, runtime in self.runtimes.items():
+            if self.state_gates[name].due(now):
+                self._publish_state(now, runtime)
+            for lidar, ranges in runtime.plugins.poll_lidars(now):
+                scan = messages.laser_scan(lidar.config, now, ranges)
+                runtime.sensor_pubs[lidar.config.topic].publish(scan)
+            pubs = runtime.sensor_pubs
+            for camera, frame in runtime.plugins.poll_cameras(now, _has_subscribers(pubs)):
+                c = camera.config
+                pubs[c.image_topic].publish(messages.image(c, now, frame))
+                pubs[c.info_topic].publish(messages.camera_info(c, now))
+
+    def _publish_state(self, now: float, runtime: _Runtime) -> None:
+        # The diff drive pairs these two by stamp.
+        base = self.sim.base_state(runtime.entity)
+        runtime.truth_pub.publish(
+            messages.odometry(_ground_truth(now, runtime.entity.spec.root_link, base))
+        )
+        states = self.sim.joint_states(runtime.entity)
+        names = list(states)
+        runtime.state_pub.publish(
+            messages.joint_state(
+                now,
+                names,
+                [states[n][0] for n in names],
+                [states[n][1] for n in names],
+                [states[n][2] for n in names],
+            )
+        )
+
+    def run(self) -> None:
+        """Step, publish and pace until shutdown."""
+        steps_between_spins = 8
+        while self.running and self.ros.ok():
+            # Ground truth and joint states go out before the step so that a subscriber sees a
+            # consistent state at the stamp.
+            self._publish(self.sim.time)
+            self.sim.step()
+            wait = self.pacer.wait_needed(self.sim.time)
+            if wait > 0:
+                self.ros.spin_once(self.node, timeout_sec=wait)
+            elif self.sim.steps % steps_between_spins == 0:
+                self.ros.spin_once(self.node, timeout_sec=0.0)
+            if self.sim.steps % 240 == 0:
+                self.children.supervise()
+
+    def close(self) -> None:
+        """Stop the children and the physics."""
+        self.children.stop()
+        self.sim.close()
+
+
+def _has_subscribers(pubs: dict[str, Any]) -> Callable[[CameraConfig], bool]:
+    """Whether a camera's image topic has a subscriber (only then is it rendered)."""
+    return lambda config: bool(pubs[config.image_topic].get_subscription_count() > 0)
+
+
+def _ground_truth(now: float, root: str, base: Any) -> Any:
+    from launchkit.stock.gazebo_ros.diff_drive import Odometry
+
+    zeros = tuple(0.0 for _ in range(36))
+    return Odometry(
+        stamp=now,
+        frame_id="world",
+        child_frame_id=root,
+        position=base.position,
+        orientation=base.orientation,
+        linear=base.linear_velocity,
+        angular=base.angular_velocity,
+        pose_covariance=zeros,
+        twist_covariance=zeros,
+    )
+
+
+def _msg(package: str, name: str) -> Any:
+    return getattr(importlib.import_module(f"launchkit.ros.msgs.{package}.msg"), name)
+
+
+def main(argv: list[str] | None = None) -> int:
+    """Entry point of ``gzserver`` and ``gazebo``."""
+    argv = sys.argv[1:] if argv is None else argv
+    try:
+        options = parse_server_args(argv)
+        resolve_world(options.world)
+    except (UsageError, ModelError) as exc:
+        print(f"gazebo: error: {exc}", file=sys.stderr)
+        return 2
+    ros = importlib.import_module("launchkit.ros")
+    ros.init(args=[sys.argv[0], *argv])
+    server: SimServer | None = None
+    stop_requested = False
+
+    def _stop(_signum: int, _frame: object) -> None:
+        nonlocal stop_requested
+        stop_requested = True
+        if server is not None:
+            server.running = False
+
+    # Installed before the (slow) world load, so an early Ctrl-C still ends cleanly.
+    signal.signal(signal.SIGTERM, _stop)
+    signal.signal(signal.SIGINT, _stop)
+    try:
+        server = SimServer(ros, options)
+        server.running = not stop_requested
+        server.run()
+    except ModelError as exc:
+        print(f"gazebo: error: {exc}", file=sys.stderr)
+        return 2
+    finally:
+        if server is not None:
+            server.close()
+        ros.shutdown()
+    return 0
+
+
+if __name__ == "__main__":
+    raise SystemExit(main())
