@@ -153,3 +153,17 @@ def test_ctrl_c_leaves_nothing_running(robot) -> None:  # type: ignore[no-untype
     result = robot.stop()  # the plugin fails the test if any process of the launch survives
     assert result.returncode == 0
     result.assert_exit_codes({"spawn_entity.py": 0, "*": {0, -2}})
+
+
+def test_without_gazebo_only_the_description_runs(launch) -> None:  # type: ignore[no-untyped-def]
+    handle = launch(
+        "robot_wheel",
+        "gazebo_and_rviz.launch.xml",
+        args={"start_rviz": "false", "start_gazebo": "false"},
+    )
+    (description,) = handle.expect_topic("/robot_description", within=30)
+    assert description.data.lstrip().startswith("<?xml") or "<robot" in description.data
+    (static,) = handle.expect_topic("/tf_static", within=30)
+    assert static.transforms
+    result = handle.stop()
+    assert set(result.exit_codes) == {"robot_state_publisher"}
