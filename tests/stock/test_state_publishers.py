@@ -7,14 +7,12 @@ from typing import Any
 
 import pytest
 import yaml
+from launchkit.ros.msgs.sensor_msgs.msg import JointState
+from launchkit.ros.msgs.std_msgs.msg import String
+from launchkit.ros.msgs.tf2_msgs.msg import TFMessage
 
 from launchkit.stock.urdf import parse_urdf
 from tests.stock.conftest import Processes, latched, spin_until
-
-ros = pytest.importorskip("launchkit.ros", reason="the ROS layer (branch ros) is not merged yet")
-from launchkit.ros.msgs.sensor_msgs.msg import JointState  # noqa: E402
-from launchkit.ros.msgs.std_msgs.msg import String  # noqa: E402
-from launchkit.ros.msgs.tf2_msgs.msg import TFMessage  # noqa: E402
 
 URDF = (Path(__file__).parents[2] / "urdf" / "three_wheeled_robot.urdf").read_text()
 RSP = "launchkit.stock.robot_state_publisher.node"
