@@ -9,7 +9,7 @@ import pytest
 from launchkit.errors import UserError
 from launchkit.stock.rviz2.config import Display, load_config, parse_config
 
-SHIPPED = Path(__file__).parents[2] / "launchkit" / "stock" / "rviz2" / "config" / "robot.rviz"
+SHIPPED = Path(__file__).parents[2] / "config" / "robot.rviz"  # robot_wheel's
 
 CONFIG = """
 Panels:
@@ -53,7 +53,7 @@ def test_fixed_frame_displays_and_topics() -> None:
 
 def test_shipped_config_reads() -> None:
     config = load_config(SHIPPED)
-    assert config.fixed_frame == "base"
+    assert config.fixed_frame == "odom"
     assert "/robot_description" in config.topics
 
 

@@ -20,7 +20,7 @@ from tests.stock.conftest import Processes, free_port, latched
 from tests.stock.foxglove_client import FoxgloveClient
 
 URDF = (Path(__file__).parents[2] / "urdf" / "three_wheeled_robot.urdf").read_text()
-CONFIG = Path(__file__).parents[2] / "launchkit" / "stock" / "rviz2" / "config" / "robot.rviz"
+CONFIG = Path(__file__).parents[2] / "config" / "robot.rviz"  # robot_wheel's
 TOPICS = ["/robot_description", "/tf", "/scan"]
 
 
