@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+import os
+import signal
 from pathlib import Path
 from typing import Any
 
@@ -115,3 +117,26 @@ def test_jsp_waits_for_the_description_topic(processes: Processes, probe: Any) -
     description.publish(String(data=URDF))
     spin_until(probe, lambda: bool(states), "/joint_states from the description topic")
     assert "wheel_left_joint" in list(states[0].name)
+
+
+def test_jsp_gui_is_a_headless_joint_state_publisher(
+    tmp_path: Path, processes: Processes, probe: Any
+) -> None:
+    proc = processes.start(
+        "launchkit.cli",
+        "exec",
+        "joint_state_publisher_gui",
+        "joint_state_publisher_gui",
+        "--ros-args",
+        "--params-file",
+        _params(tmp_path, robot_description=URDF),
+    )
+    states: list[Any] = []
+    probe.create_subscription(JointState, "/joint_states", states.append, 10)
+    spin_until(probe, lambda: bool(states), "/joint_states from joint_state_publisher_gui")
+    assert list(states[0].position) == [0.0, 0.0, 0.0]
+    assert "joint_state_publisher_gui" in probe.get_node_names()
+    os.killpg(proc.pid, signal.SIGINT)
+    _, err = proc.communicate(timeout=15)
+    assert proc.returncode == 0, err
+    assert "no slider window" in err
