@@ -90,3 +90,14 @@ def test_bad_option_is_a_user_error() -> None:
 
     with pytest.raises(UserError, match="unrecognized arguments: --bogus"):
         parse_args(["--bogus"])
+
+
+def test_port_default_comes_from_the_environment(monkeypatch: pytest.MonkeyPatch) -> None:
+    from launchkit.stock.rviz2.cli import PORT_ENV, parse_args
+
+    monkeypatch.setenv(PORT_ENV, "9100")
+    assert parse_args([]).port == 9100
+    assert parse_args(["--port", "9200"]).port == 9200
+    monkeypatch.setenv(PORT_ENV, "http")
+    with pytest.raises(UserError, match="LAUNCHKIT_FOXGLOVE_PORT is 'http'"):
+        parse_args([])
