@@ -4,6 +4,8 @@ from __future__ import annotations
 
 import os
 import signal
+import subprocess
+import sys
 from pathlib import Path
 from typing import Any
 
@@ -140,3 +142,55 @@ def test_jsp_gui_is_a_headless_joint_state_publisher(
     _, err = proc.communicate(timeout=15)
     assert proc.returncode == 0, err
     assert "no slider window" in err
+
+
+SMALL = (
+    "<robot name='small'><link name='base'/><link name='mast'/>"
+    "<joint name='mast_joint' type='fixed'><parent link='base'/><child link='mast'/>"
+    "<origin xyz='0 0 1'/></joint></robot>"
+)
+
+
+def _param_set(value: str) -> subprocess.CompletedProcess[str]:
+    return subprocess.run(
+        [
+            sys.executable,
+            "-m",
+            "launchkit",
+            "param",
+            "set",
+            "/robot_state_publisher",
+            "robot_description",
+            value,
+        ],
+        capture_output=True,
+        text=True,
+        timeout=60,
+    )
+
+
+def test_rsp_takes_a_new_valid_description_at_run_time(
+    tmp_path: Path, processes: Processes, probe: Any
+) -> None:
+    processes.start(RSP, "--ros-args", "--params-file", _params(tmp_path, robot_description=URDF))
+    descriptions: list[Any] = []
+    statics: list[Any] = []
+    probe.create_subscription(String, "/robot_description", descriptions.append, latched())
+    probe.create_subscription(TFMessage, "/tf_static", statics.append, latched())
+    spin_until(probe, lambda: bool(descriptions and statics), "the first description")
+
+    rejected = _param_set(
+        "<robot name='bad'><link name='a'/><joint name='j' type='hinge'/></robot>"
+    )
+    assert rejected.returncode == 1
+    assert "joint 'j' has type 'hinge'" in rejected.stdout
+
+    accepted = _param_set(SMALL)
+    assert accepted.returncode == 0, accepted.stdout + accepted.stderr
+    spin_until(probe, lambda: descriptions[-1].data == SMALL, "the new description")
+    spin_until(
+        probe,
+        lambda: [t.child_frame_id for t in statics[-1].transforms] == ["mast"],
+        "the new robot's fixed transforms",
+    )
+    assert len(descriptions) == 2  # the rejected one was never published
