@@ -9,7 +9,7 @@ import pytest
 from launchkit.errors import UserError
 from launchkit.stock.rviz2.config import Display, load_config, parse_config
 
-SHIPPED = Path(__file__).parents[2] / "launchkit" / "stock" / "rviz2" / "config" / "robot.rviz"
+SHIPPED = Path(__file__).parents[2] / "config" / "robot.rviz"  # robot_wheel's
 
 CONFIG = """
 Panels:
@@ -53,7 +53,7 @@ def test_fixed_frame_displays_and_topics() -> None:
 
 def test_shipped_config_reads() -> None:
     config = load_config(SHIPPED)
-    assert config.fixed_frame == "base"
+    assert config.fixed_frame == "odom"
     assert "/robot_description" in config.topics
 
 
@@ -90,3 +90,14 @@ def test_bad_option_is_a_user_error() -> None:
 
     with pytest.raises(UserError, match="unrecognized arguments: --bogus"):
         parse_args(["--bogus"])
+
+
+def test_port_default_comes_from_the_environment(monkeypatch: pytest.MonkeyPatch) -> None:
+    from launchkit.stock.rviz2.cli import PORT_ENV, parse_args
+
+    monkeypatch.setenv(PORT_ENV, "9100")
+    assert parse_args([]).port == 9100
+    assert parse_args(["--port", "9200"]).port == 9200
+    monkeypatch.setenv(PORT_ENV, "http")
+    with pytest.raises(UserError, match="LAUNCHKIT_FOXGLOVE_PORT is 'http'"):
+        parse_args([])

@@ -2,19 +2,21 @@
 
 from __future__ import annotations
 
+import os
+import signal
+import subprocess
+import sys
 from pathlib import Path
 from typing import Any
 
 import pytest
 import yaml
+from launchkit.ros.msgs.sensor_msgs.msg import JointState
+from launchkit.ros.msgs.std_msgs.msg import String
+from launchkit.ros.msgs.tf2_msgs.msg import TFMessage
 
 from launchkit.stock.urdf import parse_urdf
 from tests.stock.conftest import Processes, latched, spin_until
-
-ros = pytest.importorskip("launchkit.ros", reason="the ROS layer (branch ros) is not merged yet")
-from launchkit.ros.msgs.sensor_msgs.msg import JointState  # noqa: E402
-from launchkit.ros.msgs.std_msgs.msg import String  # noqa: E402
-from launchkit.ros.msgs.tf2_msgs.msg import TFMessage  # noqa: E402
 
 URDF = (Path(__file__).parents[2] / "urdf" / "three_wheeled_robot.urdf").read_text()
 RSP = "launchkit.stock.robot_state_publisher.node"
@@ -117,3 +119,78 @@ def test_jsp_waits_for_the_description_topic(processes: Processes, probe: Any) -
     description.publish(String(data=URDF))
     spin_until(probe, lambda: bool(states), "/joint_states from the description topic")
     assert "wheel_left_joint" in list(states[0].name)
+
+
+def test_jsp_gui_is_a_headless_joint_state_publisher(
+    tmp_path: Path, processes: Processes, probe: Any
+) -> None:
+    proc = processes.start(
+        "launchkit.cli",
+        "exec",
+        "joint_state_publisher_gui",
+        "joint_state_publisher_gui",
+        "--ros-args",
+        "--params-file",
+        _params(tmp_path, robot_description=URDF),
+    )
+    states: list[Any] = []
+    probe.create_subscription(JointState, "/joint_states", states.append, 10)
+    spin_until(probe, lambda: bool(states), "/joint_states from joint_state_publisher_gui")
+    assert list(states[0].position) == [0.0, 0.0, 0.0]
+    assert "joint_state_publisher_gui" in probe.get_node_names()
+    os.killpg(proc.pid, signal.SIGINT)
+    _, err = proc.communicate(timeout=15)
+    assert proc.returncode == 0, err
+    assert "no slider window" in err
+
+
+SMALL = (
+    "<robot name='small'><link name='base'/><link name='mast'/>"
+    "<joint name='mast_joint' type='fixed'><parent link='base'/><child link='mast'/>"
+    "<origin xyz='0 0 1'/></joint></robot>"
+)
+
+
+def _param_set(value: str) -> subprocess.CompletedProcess[str]:
+    return subprocess.run(
+        [
+            sys.executable,
+            "-m",
+            "launchkit",
+            "param",
+            "set",
+            "/robot_state_publisher",
+            "robot_description",
+            value,
+        ],
+        capture_output=True,
+        text=True,
+        timeout=60,
+    )
+
+
+def test_rsp_takes_a_new_valid_description_at_run_time(
+    tmp_path: Path, processes: Processes, probe: Any
+) -> None:
+    processes.start(RSP, "--ros-args", "--params-file", _params(tmp_path, robot_description=URDF))
+    descriptions: list[Any] = []
+    statics: list[Any] = []
+    probe.create_subscription(String, "/robot_description", descriptions.append, latched())
+    probe.create_subscription(TFMessage, "/tf_static", statics.append, latched())
+    spin_until(probe, lambda: bool(descriptions and statics), "the first description")
+
+    rejected = _param_set(
+        "<robot name='bad'><link name='a'/><joint name='j' type='hinge'/></robot>"
+    )
+    assert rejected.returncode == 1
+    assert "joint 'j' has type 'hinge'" in rejected.stdout
+
+    accepted = _param_set(SMALL)
+    assert accepted.returncode == 0, accepted.stdout + accepted.stderr
+    spin_until(probe, lambda: descriptions[-1].data == SMALL, "the new description")
+    spin_until(
+        probe,
+        lambda: [t.child_frame_id for t in statics[-1].transforms] == ["mast"],
+        "the new robot's fixed transforms",
+    )
+    assert len(descriptions) == 2  # the rejected one was never published

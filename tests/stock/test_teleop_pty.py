@@ -6,13 +6,11 @@ import shlex
 import sys
 from typing import Any
 
+import pexpect
 import pytest
+from launchkit.ros.msgs.geometry_msgs.msg import Twist, TwistStamped
 
 from tests.stock.conftest import spin_until
-
-ros = pytest.importorskip("launchkit.ros", reason="the ROS layer (branch ros) is not merged yet")
-pexpect = pytest.importorskip("pexpect")
-from launchkit.ros.msgs.geometry_msgs.msg import Twist, TwistStamped  # noqa: E402
 
 MODULE = "launchkit.stock.teleop_twist_keyboard.node"
 

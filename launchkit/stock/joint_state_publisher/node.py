@@ -98,10 +98,10 @@ class JointStatePublisher:
         )
 
 
-def main(argv: list[str]) -> int:
-    """Run the node until shutdown (Ctrl-C or SIGTERM)."""
+def main(argv: list[str], name: str = "joint_state_publisher") -> int:
+    """Run the node called ``name`` until shutdown (Ctrl-C or SIGTERM)."""
     ros.init(argv)
-    node = ros.Node("joint_state_publisher", automatically_declare_parameters_from_overrides=True)
+    node = ros.Node(name, automatically_declare_parameters_from_overrides=True)
     try:
         JointStatePublisher(node)
         ros.spin(node)

@@ -54,18 +54,37 @@ class RobotStatePublisher:
         for joint in self.model.joints:
             node.get_logger().debug(f"got segment {joint.child}")
 
-        node.create_publisher(String, "robot_description", LATCHED).publish(
-            String(data=description)
-        )
+        self.description = node.create_publisher(String, "robot_description", LATCHED)
         self.tf_static = node.create_publisher(TFMessage, "/tf_static", LATCHED)
         self.tf = node.create_publisher(TFMessage, "/tf", 100)
-        now = node.get_clock().now().to_msg()
-        self.tf_static.publish(tf_message(self.model.fixed_transforms(self.frame_prefix), now))
+        self._publish_model(description)
         node.create_subscription(JointState, "joint_states", self.on_joint_states, 10)
-        node.get_logger().info(
+        node.add_on_set_parameters_callback(self.on_set_parameters)
+
+    def _publish_model(self, description: str) -> None:
+        """Send the (new) description and the fixed transforms on their latched topics."""
+        from launchkit.ros.msgs.std_msgs.msg import String
+
+        self.description.publish(String(data=description))
+        now = self.node.get_clock().now().to_msg()
+        self.tf_static.publish(tf_message(self.model.fixed_transforms(self.frame_prefix), now))
+        self.node.get_logger().info(
             f"publishing robot {self.model.name!r}: {len(self.model.fixed_transforms())} fixed "
             f"and {len(self.model.moving_joints)} moving joints"
         )
+
+    def on_set_parameters(self, params: list[Any]) -> Any:
+        """Accept a new ``robot_description`` only when it is a valid URDF, then republish."""
+        for param in params:
+            if param.name != "robot_description":
+                continue
+            try:
+                model = parse_urdf(str(param.value), source="robot_description")
+            except UserError as exc:
+                return ros.SetParametersResult(successful=False, reason=exc.format())
+            self.model = model
+            self._publish_model(str(param.value))
+        return ros.SetParametersResult(successful=True)
 
     def on_joint_states(self, msg: Any) -> None:
         """Send ``/tf`` for the joints in ``msg``, at most ``publish_frequency`` times a second."""

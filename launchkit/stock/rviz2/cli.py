@@ -3,10 +3,14 @@
 from __future__ import annotations
 
 import argparse
+import os
 from pathlib import Path
 from typing import NoReturn
 
 from launchkit.errors import UserError
+
+#: Sets the default port, e.g. for launch files whose rviz2 line cannot be changed.
+PORT_ENV = "LAUNCHKIT_FOXGLOVE_PORT"
 
 
 class _Parser(argparse.ArgumentParser):
@@ -24,5 +28,17 @@ def parse_args(argv: list[str]) -> argparse.Namespace:
     parser = _Parser(prog="rviz2", description=__doc__)
     parser.add_argument("-d", "--display-config", type=Path, help="an .rviz config (YAML)")
     parser.add_argument("-f", "--fixed-frame", help="override the config's fixed frame")
-    parser.add_argument("--port", type=int, default=8765, help="WebSocket port (default 8765)")
+    parser.add_argument(
+        "--port",
+        type=int,
+        default=_default_port(),
+        help=f"WebSocket port (default ${PORT_ENV} or 8765)",
+    )
     return parser.parse_args(own)
+
+
+def _default_port() -> int:
+    value = os.environ.get(PORT_ENV, "8765")
+    if not value.isdigit() or not 0 <= int(value) <= 65535:
+        raise UserError(f"{PORT_ENV} is {value!r}", expected="a port number, 0 to 65535")
+    return int(value)

@@ -120,8 +120,8 @@ def main(argv: list[str]) -> int:
         node = ros.Node("rviz2")
         try:
             Rviz2(node, relay)
-            for line in connect_lines(relay, config):
-                node.get_logger().info(line)
+            for line in connect_lines(relay, config):  # for the user: plain stdout, like rviz2's
+                print(line, flush=True)
             ros.spin(node)
         finally:
             node.destroy_node()
