@@ -182,9 +182,10 @@ def _make_rclpy_like(ts: Typestore, name: str) -> None:
         def __setattr__(self: Any, key: str, value: Any) -> None:
             dtype = arrays.get(key)
             if dtype is not None and not isinstance(value, np.ndarray):
-                value = np.asarray(
-                    value if not isinstance(value, (bytes, bytearray)) else list(value), dtype=dtype
-                )
+                if isinstance(value, (bytes, bytearray, memoryview)):
+                    value = np.frombuffer(value, dtype=np.uint8).astype(dtype, copy=False)
+                else:
+                    value = np.asarray(value, dtype=dtype)
             object.__setattr__(self, key, value)
 
         setattr(cls, "__setattr__", __setattr__)  # noqa: B010
