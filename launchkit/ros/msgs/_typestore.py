@@ -58,8 +58,10 @@ def typestore() -> Typestore:
 def _build() -> Typestore:
     ts = get_typestore(Stores.ROS2_JAZZY)
     _chars_as_uint8(ts)
+    services: dict[str, Any] = {}
     for name, text in SERVICES.items():
-        ts.register(_service_types(name, text))
+        services.update(_service_types(name, text))
+    ts.register(services)  # at once: each register() generates and compiles code
     for cls_name in list(ts.types):
         _make_rclpy_like(ts, cls_name)
     return ts
