@@ -6,7 +6,7 @@ import subprocess
 import sys
 
 import pytest
-from conftest import NODES_DIR, Child
+from ros_helpers import NODES_DIR, Child
 
 
 def launchkit(*args: str, timeout: float = 30) -> subprocess.CompletedProcess[str]:
@@ -111,7 +111,7 @@ def test_interface_show() -> None:
 
 
 def test_without_a_router_the_command_says_so(monkeypatch: pytest.MonkeyPatch) -> None:
-    from conftest import free_port
+    from ros_helpers import free_port
 
     monkeypatch.setenv("LAUNCHKIT_ROUTER", f"tcp/127.0.0.1:{free_port()}")
     result = launchkit("topic", "list")

@@ -7,7 +7,7 @@ import sys
 from pathlib import Path
 
 import pytest
-from conftest import NODES_DIR, Child, free_port
+from ros_helpers import NODES_DIR, Child, free_port
 
 
 def _package(prefix: Path) -> None:

@@ -5,8 +5,8 @@ from __future__ import annotations
 from collections.abc import Callable, Iterator
 
 import pytest
-from conftest import spin_until
 from launchkit.ros.msgs.std_msgs.msg import String
+from ros_helpers import spin_until
 
 from launchkit.ros import Node, ParameterNotDeclaredException
 from launchkit.ros import logging as ros_logging
