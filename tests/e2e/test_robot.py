@@ -22,6 +22,7 @@ from collections.abc import Iterator
 from contextlib import contextmanager
 from typing import Any
 
+import pexpect
 import pytest
 from launchkit.ros.msgs.geometry_msgs.msg import Twist, Vector3
 
@@ -147,6 +148,27 @@ def test_angular_z_turns_it_counter_clockwise(robot) -> None:  # type: ignore[no
     expected = rate * (stamp(end) - stamp(start))
     assert turned > 0
     assert abs(turned - expected) < 0.25 * expected, (turned, expected)
+
+
+def test_teleop_in_a_second_terminal_drives_the_robot(robot) -> None:  # type: ignore[no-untyped-def]
+    teleop = pexpect.spawn(
+        sys.executable,
+        ["-m", "launchkit", "exec", "teleop_twist_keyboard", "teleop_twist_keyboard"],
+        env={**os.environ, **robot.ros_env},
+        encoding="utf-8",
+        timeout=30,
+    )
+    try:
+        teleop.expect_exact("Moving around:")
+        teleop.send("i")  # forward at 0.5 m/s, as in ROS
+        robot.expect_topic("/odom", within=20, where=lambda m: abs(m.twist.twist.linear.x) > 0.4)
+        teleop.send("k")  # stop
+        robot.expect_topic("/odom", within=20, where=lambda m: abs(m.twist.twist.linear.x) < 0.02)
+        teleop.sendcontrol("c")
+        teleop.expect(pexpect.EOF)
+    finally:
+        teleop.close(force=True)
+    assert teleop.exitstatus == 0
 
 
 def test_ctrl_c_leaves_nothing_running(robot) -> None:  # type: ignore[no-untyped-def]
