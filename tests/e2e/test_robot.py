@@ -15,6 +15,7 @@ from __future__ import annotations
 import math
 import os
 import signal
+import socket
 import subprocess
 import sys
 import threading
@@ -189,3 +190,20 @@ def test_without_gazebo_only_the_description_runs(launch) -> None:  # type: igno
     assert static.transforms
     result = handle.stop()
     assert set(result.exit_codes) == {"robot_state_publisher"}
+
+
+def test_the_default_launch_also_serves_the_viewer(launch) -> None:  # type: ignore[no-untyped-def]
+    with socket.socket() as probe:
+        probe.bind(("127.0.0.1", 0))
+        port = probe.getsockname()[1]
+    handle = launch(
+        "robot_wheel",
+        "gazebo_and_rviz.launch.xml",
+        env={"LAUNCHKIT_FOXGLOVE_PORT": str(port)},
+        ready_timeout=60,
+    )
+    handle.process("rviz2").wait_output(f"ws://127.0.0.1:{port}", timeout=30)
+    with socket.create_connection(("127.0.0.1", port), timeout=10):
+        pass  # the viewer's WebSocket server accepts connections
+    handle.expect_topic("/odom", within=30)
+    handle.stop().assert_exit_codes({"spawn_entity.py": 0, "*": {0, -2}})
