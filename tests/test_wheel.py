@@ -46,3 +46,9 @@ def test_installed_wheel_has_the_robot_share_dir(tmp_path: Path) -> None:
         cwd=elsewhere,
     )
     assert "[talker-1] Hello number 1" in ran.stdout
+    printed = run(
+        env_dir / "bin" / "launchkit", "run", "gazebo_and_rviz.launch.xml", "--print", cwd=elsewhere
+    )
+    assert "spawn_entity" in printed.stdout and "robot_state_publisher" in printed.stdout
+    assert str(share / "config" / "robot.rviz") in printed.stdout
+    assert "launchkit.stock.gazebo_ros.server" in printed.stdout

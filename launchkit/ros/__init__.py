@@ -23,6 +23,7 @@ from launchkit.ros.context import Context, NotInitializedError, default_context
 from launchkit.ros.context import install_signal_handlers as _install_signal_handlers
 from launchkit.ros.executor import (
     Executor,
+    ExternalShutdownException,
     MultiThreadedExecutor,
     SingleThreadedExecutor,
     spin,
@@ -91,6 +92,7 @@ __all__ = [
     "DurabilityPolicy",
     "Duration",
     "Executor",
+    "ExternalShutdownException",
     "Future",
     "HistoryPolicy",
     "InvalidParameterTypeException",

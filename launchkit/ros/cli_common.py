@@ -62,19 +62,23 @@ def graph_tokens(node: Node, timeout: float = 2.0) -> list[Token]:
     """Every token in the node's domain, without the command's own.
 
     Just after a session connects, the router may not route liveliness queries yet (measured:
-    up to ~60 ms) and answers nothing; so an empty answer is asked again for a short while.
+    up to ~60 ms) and answers nothing or part of the graph; so ask until two answers in a row
+    agree (and are not empty), for at most ``_SETTLE`` seconds.
     """
     own = node._zid
     deadline = time.monotonic() + _SETTLE
+    previous: set[str] | None = None
     while True:
         tokens = [
             t
             for t in snapshot(node.context.session, node.context.domain_id, timeout)
             if t.zid != own
         ]
-        if tokens or time.monotonic() > deadline:
+        keys = {t.key for t in tokens}
+        if (keys and keys == previous) or time.monotonic() > deadline:
             return tokens
-        time.sleep(0.01)
+        previous = keys
+        time.sleep(0.02)
 
 
 def normalize_topic(name: str) -> str:

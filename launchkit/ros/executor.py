@@ -22,6 +22,14 @@ _WAKE: Work = (lambda: None, ())
 _MAX_WAIT = 1.0  # re-check timers at least this often (a sim clock may have been switched on)
 
 
+class ExternalShutdownException(Exception):
+    """rclpy's exception for "the context was shut down from outside".
+
+    launchkit's ``spin`` returns instead of raising it; it exists so that code written as
+    ``except (KeyboardInterrupt, ExternalShutdownException)`` runs unchanged.
+    """
+
+
 class WorkQueue:
     """The queue zenoh threads fill and the spinning thread drains."""
 

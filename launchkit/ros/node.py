@@ -44,11 +44,7 @@ class Node:
         self.context.require()
         original = names.validate_node_name(node_name)
         rules = list(self.context.ros_args.remaps) if use_global_arguments else []
-        local_args = parse_ros_args(
-            ["--ros-args", *cli_args]
-            if cli_args and "--ros-args" not in cli_args
-            else (cli_args or [])
-        )
+        local_args = parse_ros_args(cli_args or [])  # needs its own "--ros-args", as rclpy
         rules = local_args.remaps + rules
         self._remaps = rules
         self._original_name = original

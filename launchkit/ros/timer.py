@@ -22,7 +22,6 @@ class Timer:
         self._canceled = False
         self._next_ns = clock.now().nanoseconds + self.timer_period_ns
 
-    @property
     def is_canceled(self) -> bool:
         """Whether the timer is stopped."""
         return self._canceled
@@ -30,10 +29,6 @@ class Timer:
     def cancel(self) -> None:
         """Stop calling back (``reset()`` restarts)."""
         self._canceled = True
-
-    def is_canceled_(self) -> bool:
-        """rclpy spelling: ``timer.is_canceled()``."""
-        return self._canceled
 
     def reset(self) -> None:
         """Restart: the next call is one period from now."""

@@ -120,3 +120,21 @@ def test_stand_in_modules_do_not_outlive_the_load(evaluate_xml: EvaluateXml) -> 
     evaluate_xml(GAZEBO_LIKE, name="gz.launch.py")
     leaked = sys.modules.get("launch")
     assert getattr(leaked, "LaunchDescription", None) is not launch_api.LaunchDescription
+
+
+def test_on_exit_shutdown(evaluate_xml: EvaluateXml) -> None:
+    code = (
+        "from launch import LaunchDescription\n"
+        "from launch.actions import ExecuteProcess, Shutdown, LogInfo\n"
+        "def generate_launch_description():\n"
+        "    return LaunchDescription([\n"
+        "        ExecuteProcess(cmd=['true'], name='a', on_exit=Shutdown()),\n"
+        "        ExecuteProcess(cmd=['true'], name='b', on_exit=[Shutdown()]),\n"
+        "    ])\n"
+    )
+    result = evaluate_xml(code, name="exit.launch.py")
+    assert result.process("a").on_exit_shutdown and result.process("b").on_exit_shutdown
+    bad = code.replace("on_exit=[Shutdown()]", "on_exit=[LogInfo(msg='bye')]")
+    with pytest.raises(LaunchFileError, match="on_exit with actions") as caught:
+        evaluate_xml(bad, name="exit2.launch.py")
+    assert caught.value.location is not None and caught.value.location.line == 6

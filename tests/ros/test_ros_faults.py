@@ -5,14 +5,14 @@ from __future__ import annotations
 import os
 from pathlib import Path
 
-from conftest import NODES_DIR, Child
+from ros_helpers import NODES_DIR, Child
 
 from launchkit.ros.router import start_router
 from launchkit.ros.session import close_session, open_session, peer_config
 
 
 def test_nodes_reconnect_after_the_router_restarts(children: list[Child], monkeypatch) -> None:
-    from conftest import free_port
+    from ros_helpers import free_port
 
     endpoint = f"tcp/127.0.0.1:{free_port()}"
     monkeypatch.setenv("LAUNCHKIT_ROUTER", endpoint)

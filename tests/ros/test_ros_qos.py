@@ -5,8 +5,8 @@ from __future__ import annotations
 from collections.abc import Callable
 
 import pytest
-from conftest import spin_until
 from launchkit.ros.msgs.std_msgs.msg import String
+from ros_helpers import spin_until
 
 from launchkit.ros import DurabilityPolicy, Node, QoSProfile, ReliabilityPolicy
 from launchkit.ros.context import Context

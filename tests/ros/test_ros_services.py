@@ -6,10 +6,10 @@ from collections.abc import Callable
 from typing import Any
 
 import pytest
-from conftest import spin_until
 from launchkit.ros.msgs.rcl_interfaces.srv import GetParameters, ListParameters, SetParameters
 from launchkit.ros.msgs.rosgraph_msgs.msg import Clock
 from launchkit.ros.msgs.std_srvs.srv import SetBool
+from ros_helpers import spin_until
 
 from launchkit.ros import Node, Parameter, spin_until_future_complete
 from launchkit.ros.context import Context

@@ -2,7 +2,7 @@
 
 from __future__ import annotations
 
-from conftest import NODES_DIR, Child
+from ros_helpers import NODES_DIR, Child
 
 
 def test_talker_and_listener_processes_talk(router_endpoint: str, children: list[Child]) -> None:

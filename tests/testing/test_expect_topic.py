@@ -13,6 +13,9 @@ TALKER = f"""#!{sys.executable}
 import launchkit.ros as ros
 from launchkit.ros.msgs.std_msgs.msg import String
 
+import sys
+
+word = sys.argv[1] if len(sys.argv) > 1 and not sys.argv[1].startswith("--") else "hello"
 ros.init()
 node = ros.Node("talker")
 chatter = node.create_publisher(String, "chatter", 10)
@@ -25,7 +28,7 @@ count = [0]
 
 def tick():
     count[0] += 1
-    chatter.publish(String(data=f"hello {{count[0]}}"))
+    chatter.publish(String(data=f"{{word}} {{count[0]}}"))
 
 
 node.create_timer(0.05, tick)
@@ -47,7 +50,10 @@ def talker_launch(tmp_path: Path) -> tuple[Path, dict[str, str]]:
     script.write_text(TALKER)
     script.chmod(0o755)
     path = tmp_path / "talk.launch.xml"
-    path.write_text('<launch><node pkg="demo" exec="talker" output="screen"/></launch>')
+    path.write_text(
+        '<launch><arg name="word" default="hello"/>'
+        '<node pkg="demo" exec="talker" args="$(var word)" output="screen"/></launch>'
+    )
     return path, {"AMENT_PREFIX_PATH": str(prefix)}
 
 
@@ -79,3 +85,13 @@ def test_a_silent_topic_fails_with_what_was_seen(launch, talker_launch) -> None:
     text = str(caught.value)
     assert "1 message(s) on /nothing_here" in text
     assert "/chatter" in text and "talker" in text
+
+
+def test_two_launches_in_parallel_do_not_hear_each_other(launch, talker_launch) -> None:  # type: ignore[no-untyped-def]
+    path, env = talker_launch
+    first = launch(path, args={"word": "first"}, env=env)
+    second = launch(path, args={"word": "second"}, env=env)
+    heard_first = first.expect_topic("/chatter", min_messages=20, within=30)
+    heard_second = second.expect_topic("/chatter", min_messages=20, within=30)
+    assert {m.data.split()[0] for m in heard_first} == {"first"}
+    assert {m.data.split()[0] for m in heard_second} == {"second"}

@@ -38,6 +38,7 @@ from launchkit.frontend.python_launch.values import (
     here,
     optional_value,
     to_value,
+    unsupported,
 )
 
 # -- the description ---------------------------------------------------------------------------
@@ -306,8 +307,12 @@ def process_options(
     on_exit: Any = None,
 ) -> lk.ProcessOptions:
     """The process keyword arguments ExecuteProcess and Node share, as ProcessOptions."""
-    if on_exit is not None and not isinstance(on_exit, str | list | SubstitutionLike):
-        on_exit = "shutdown" if type(on_exit).__name__ == "Shutdown" else on_exit
+    if isinstance(on_exit, lk.Shutdown) or (
+        isinstance(on_exit, list) and len(on_exit) == 1 and isinstance(on_exit[0], lk.Shutdown)
+    ):
+        on_exit = "shutdown"  # on_exit=Shutdown() or [Shutdown()]: launchkit's on_exit="shutdown"
+    elif on_exit is not None and not isinstance(on_exit, str):
+        unsupported("on_exit with actions other than Shutdown()")()
     environment = [
         (to_value(k), to_value(v)) for k, v in {**(env or {}), **(additional_env or {})}.items()
     ]

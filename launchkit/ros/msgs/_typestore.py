@@ -58,8 +58,10 @@ def typestore() -> Typestore:
 def _build() -> Typestore:
     ts = get_typestore(Stores.ROS2_JAZZY)
     _chars_as_uint8(ts)
+    services: dict[str, Any] = {}
     for name, text in SERVICES.items():
-        ts.register(_service_types(name, text))
+        services.update(_service_types(name, text))
+    ts.register(services)  # at once: each register() generates and compiles code
     for cls_name in list(ts.types):
         _make_rclpy_like(ts, cls_name)
     return ts
@@ -182,9 +184,10 @@ def _make_rclpy_like(ts: Typestore, name: str) -> None:
         def __setattr__(self: Any, key: str, value: Any) -> None:
             dtype = arrays.get(key)
             if dtype is not None and not isinstance(value, np.ndarray):
-                value = np.asarray(
-                    value if not isinstance(value, (bytes, bytearray)) else list(value), dtype=dtype
-                )
+                if isinstance(value, (bytes, bytearray, memoryview)):
+                    value = np.frombuffer(value, dtype=np.uint8).astype(dtype, copy=False)
+                else:
+                    value = np.asarray(value, dtype=dtype)
             object.__setattr__(self, key, value)
 
         setattr(cls, "__setattr__", __setattr__)  # noqa: B010

@@ -67,6 +67,8 @@ class DiffDriveNode:
             f"{p.odometry_frame} -> {p.robot_base_frame} on '{p.odometry_topic}'"
         )
         self._pending_command = (0.0, 0.0)
+        if p.publish_wheel_tf:
+            node.get_logger().warn("publish_wheel_tf is not supported; no wheel transforms")
 
     def _cmd(self, msg: Any) -> None:
         self._pending_command = (float(msg.linear.x), float(msg.angular.z))

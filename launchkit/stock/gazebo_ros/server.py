@@ -149,6 +149,10 @@ class SimServer:
             if xml.lstrip().startswith("<sdf") or "<sdf" in xml[:200]:
                 raise SimulationError("SDF models are not supported (expected a URDF <robot>)")
             pose = request.initial_pose
+            if str(request.reference_frame) not in ("", "world"):
+                self.logger.warn(
+                    f"reference_frame '{request.reference_frame}' ignored; the pose is in world"
+                )
             roll, pitch, yaw = messages.euler_from_quaternion(
                 pose.orientation.x, pose.orientation.y, pose.orientation.z, pose.orientation.w
             )

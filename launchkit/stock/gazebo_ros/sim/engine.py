@@ -107,8 +107,14 @@ class Simulation:
     def _build_world(self, world: WorldSpec) -> None:
         if world.ground_plane:
             shape = self.p.createCollisionShape(self.p.GEOM_PLANE, physicsClientId=self.client)
+            # A thin box, not a plane, as the visual: PyBullet has no visual for a plane and the
+            # EGL renderer crashes on one.
             visual = self.p.createVisualShape(
-                self.p.GEOM_PLANE, rgbaColor=(0.8, 0.8, 0.8, 1), physicsClientId=self.client
+                self.p.GEOM_BOX,
+                halfExtents=(50.0, 50.0, 0.0005),
+                visualFramePosition=(0.0, 0.0, -0.0005),
+                rgbaColor=(0.8, 0.8, 0.8, 1),
+                physicsClientId=self.client,
             )
             self.ground = self.p.createMultiBody(0, shape, visual, physicsClientId=self.client)
         for solid in world.shapes:

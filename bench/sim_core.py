@@ -1,0 +1,78 @@
+"""Real-time factor of the simulation core, headless, on the seed robot (run by hand).
+
+    python bench/sim_core.py [--seconds 20] [--camera-seconds 3]
+
+Cases: physics + diff drive (in-process, every step) + joint/base reads; + the lidar at 12 Hz;
++ the seed's 800x800 camera at 30 Hz with TinyRenderer; the same with the EGL renderer plugin.
+Targets (issue 5): >= 20x with the lidar, >= 1.0x with the seed camera. Prints one line per case
+and the machine and date.
+"""
+
+from __future__ import annotations
+
+import argparse
+import os
+import platform
+import time
+from datetime import datetime, timezone
+from pathlib import Path
+
+from launchkit.stock.gazebo_ros.diff_drive import DiffDriveController
+from launchkit.stock.gazebo_ros.sim.engine import Simulation
+from launchkit.stock.gazebo_ros.sim.plugins import load_plugins
+from launchkit.stock.gazebo_ros.sim.world import load_world, resolve_world
+
+SEED = Path(__file__).resolve().parents[1] / "urdf" / "three_wheeled_robot.urdf"
+
+
+def run(seconds: float, lidar: bool, camera: bool, egl: bool = False) -> float:
+    """Sim seconds per wall second for one case."""
+    sim = Simulation(load_world(resolve_world("obstacles")), egl=egl)
+    try:
+        entity = sim.spawn("robot", SEED.read_text(), (0, 0, 0.151, 0, 0, 0))
+        plugins = load_plugins(sim, entity, lambda _m: None)
+        _, params = plugins.diff_drives[0]
+        sim.step(240)
+        ctl = DiffDriveController(params, start_time=sim.time)
+        ctl.set_command(0.3, 0.4)  # a circle: stays clear of the obstacles
+        steps = round(seconds / sim.time_step)
+        start = time.perf_counter()
+        for _ in range(steps):
+            joints = sim.joint_states(entity)
+            wheels = (joints[params.left_joint][1], joints[params.right_joint][1])
+            update = ctl.update(sim.time, wheels, sim.base_state(entity))
+            if update is not None:
+                sim.set_joint_velocities(entity, update.command.velocities, 8.0)
+            if lidar:
+                plugins.poll_lidars(sim.time)
+            if camera:
+                plugins.poll_cameras(sim.time, lambda _c: True)
+            sim.step()
+        return seconds / (time.perf_counter() - start)
+    finally:
+        sim.close()
+
+
+def main() -> None:
+    """Run every case and print the results."""
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("--seconds", type=float, default=20.0, help="sim seconds without camera")
+    parser.add_argument("--camera-seconds", type=float, default=3.0, help="sim seconds with it")
+    args = parser.parse_args()
+    cases = [
+        ("physics + diff drive", args.seconds, False, False, False),
+        ("+ lidar 360 rays 12 Hz", args.seconds, True, False, False),
+        ("+ camera 800x800 30 Hz TinyRenderer", args.camera_seconds, True, True, False),
+        ("+ camera 800x800 30 Hz EGL", args.camera_seconds, True, True, True),
+    ]
+    print(
+        f"# {platform.node()} {platform.processor() or platform.machine()}, {os.cpu_count()} "
+        f"CPUs, Python {platform.python_version()}, {datetime.now(timezone.utc):%Y-%m-%d %H:%M} UTC"
+    )
+    for label, seconds, lidar, camera, egl in cases:
+        rtf = run(seconds, lidar, camera, egl)
+        print(f"{label:40s} real-time factor {rtf:7.2f}x ({seconds:g} sim s)", flush=True)
+
+
+if __name__ == "__main__":
+    main()

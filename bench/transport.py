@@ -1,0 +1,324 @@
+"""Transport benchmark: launchkit.ros nodes against raw zenoh-python, in separate processes.
+
+Run by hand: ``python bench/transport.py``. It hosts a router on a free loopback port and,
+for launchkit.ros and raw zenoh in turn, measures
+  * one-way latency p50/p99 of 100 B messages (1 kHz) and 100 KB messages (100 Hz),
+  * throughput of 100 B messages (publisher flat out; messages received per second),
+  * time to the first message: from the subscriber's process start, and from its
+    ``init()``/``zenoh.open()``, while a publisher already sends at 1 kHz.
+Latency is the receiver's CLOCK_MONOTONIC minus the sender's (one clock, shared by processes).
+The last line is ``transport: p50 ratio R (launchkit/raw zenoh), throughput N msg/s,
+first message T ms`` (R for 100 B; N and T for launchkit.ros; T from init).
+"""
+
+from __future__ import annotations
+
+import argparse
+import json
+import os
+import platform
+import socket
+import statistics
+import struct
+import subprocess
+import sys
+import time
+from datetime import datetime, timezone
+from typing import Any
+
+HEADER = struct.Struct("<qI")  # sender's monotonic ns, sequence number
+WARMUP = 200
+
+
+def _payload(size: int, seq: int) -> bytes:
+    head = HEADER.pack(time.monotonic_ns(), seq)
+    return head + bytes(max(0, size - len(head)))
+
+
+# --- child roles ----------------------------------------------------------------------------
+
+
+class _Transport:
+    """One side's way to publish and subscribe raw bytes (launchkit.ros or raw zenoh)."""
+
+    def __init__(self, kind: str) -> None:
+        self.kind = kind
+        if kind == "raw":
+            import zenoh
+
+            from launchkit.ros.session import peer_config, wait_for_router
+
+            self.session = zenoh.open(peer_config())
+            wait_for_router(self.session, 5.0)
+        else:
+            from launchkit.ros.msgs.std_msgs.msg import UInt8MultiArray
+
+            import launchkit.ros as ros
+
+            ros.init([])
+            self.ros = ros
+            self.msg_type = UInt8MultiArray
+            self.node = ros.Node(f"bench_{os.getpid()}")
+
+    def publisher(self) -> Any:
+        if self.kind == "raw":
+            pub = self.session.declare_publisher("bench/data")
+            return lambda data: pub.put(data)
+        pub = self.node.create_publisher(self.msg_type, "bench/data", 10)
+        msg_type = self.msg_type
+        return lambda data: pub.publish(msg_type(data=data))
+
+    def subscribe(self, on_data: Any) -> None:
+        if self.kind == "raw":
+            self.session.declare_subscriber("bench/data", lambda s: on_data(s.payload.to_bytes()))
+        else:
+            self.node.create_subscription(
+                self.msg_type, "bench/data", lambda m: on_data(m.data[:12].tobytes()), 10
+            )
+
+    def run_for(self, seconds: float, until: Any = None) -> None:
+        deadline = time.monotonic() + seconds
+        while time.monotonic() < deadline and not (until and until()):
+            if self.kind == "raw":
+                time.sleep(0.01)
+            else:
+                self.ros.spin_once(self.node, timeout_sec=0.01)
+
+    def ok(self) -> bool:
+        return self.kind == "raw" or bool(self.ros.ok())
+
+    def close(self) -> None:
+        if self.kind == "raw":
+            self.session.close()
+        else:
+            self.ros.shutdown()
+
+
+def role_pub(kind: str, size: int, rate: float, count: int, seconds: float) -> None:
+    try:
+        _publish(kind, size, rate, count, seconds)
+    except KeyboardInterrupt:  # raw zenoh's side, stopped by the parent
+        pass
+
+
+def _publish(kind: str, size: int, rate: float, count: int, seconds: float) -> None:
+    side = _Transport(kind)
+    put = side.publisher()
+    print("ready", flush=True)
+    period = 1.0 / rate if rate else 0.0
+    next_t = time.monotonic()
+    seq = 0
+    end = time.monotonic() + seconds if seconds else None
+    while side.ok() and ((count and seq < count) or (end and time.monotonic() < end)):
+        put(_payload(size, seq))
+        seq += 1
+        if period:
+            next_t += period
+            delay = next_t - time.monotonic()
+            if delay > 0:
+                time.sleep(delay)
+    side.close()
+    try:
+        print(json.dumps({"sent": seq}), flush=True)
+    except BrokenPipeError:  # the parent stopped reading (first-message runs)
+        pass
+
+
+def role_sub(kind: str, expect: int, seconds: float, first_only: bool) -> None:
+    started = time.monotonic_ns()
+    side = _Transport(kind)
+    opened = time.monotonic_ns()
+    latencies: list[int] = []
+    stamps: list[int] = []
+
+    def on_data(data: bytes) -> None:
+        now = time.monotonic_ns()
+        sent, seq = HEADER.unpack_from(data)
+        stamps.append(now)
+        if seq >= WARMUP:
+            latencies.append(now - sent)
+
+    side.subscribe(on_data)
+    print("ready", flush=True)
+    if first_only:
+        side.run_for(seconds, until=lambda: bool(stamps))
+    elif expect:
+        side.run_for(seconds, until=lambda: len(latencies) >= expect)
+    else:  # throughput: until one second of silence after the first message
+        deadline = time.monotonic() + seconds
+        while time.monotonic() < deadline:
+            before = len(stamps)
+            side.run_for(1.0)
+            if stamps and len(stamps) == before:
+                break
+    side.close()
+    span = (stamps[-1] - stamps[0]) / 1e9 if len(stamps) > 1 else 0.0
+    print(
+        json.dumps(
+            {
+                "latencies_ns": latencies,
+                "received": len(stamps),
+                "rate": (len(stamps) - 1) / span if span else 0.0,
+                "first_ns": stamps[0] if stamps else None,
+                "started_ns": started,
+                "opened_ns": opened,
+            }
+        ),
+        flush=True,
+    )
+
+
+# --- orchestration --------------------------------------------------------------------------
+
+
+def _child(*args: str) -> subprocess.Popen[str]:
+    return subprocess.Popen(
+        [sys.executable, __file__, *args], stdout=subprocess.PIPE, text=True, env=os.environ.copy()
+    )
+
+
+def _wait_line(proc: subprocess.Popen[str], text: str) -> None:
+    assert proc.stdout is not None
+    line = proc.stdout.readline()
+    if text not in line:
+        raise RuntimeError(f"child said {line!r}, expected {text!r}")
+
+
+def _result(proc: subprocess.Popen[str], timeout: float = 60.0) -> dict[str, Any]:
+    out, _ = proc.communicate(timeout=timeout)
+    return dict(json.loads(out.strip().splitlines()[-1]))
+
+
+def _pair(kind: str, sub_args: list[str], pub_args: list[str]) -> dict[str, Any]:
+    sub = _child("--role", "sub", "--kind", kind, *sub_args)
+    _wait_line(sub, "ready")
+    pub = _child("--role", "pub", "--kind", kind, *pub_args)
+    _wait_line(pub, "ready")
+    result = _result(sub)
+    pub.wait(60)
+    if pub.stdout:
+        pub.stdout.close()
+    return result
+
+
+def _pct(values: list[int], q: float) -> float:
+    ordered = sorted(values)
+    return ordered[min(len(ordered) - 1, int(q * len(ordered)))] / 1000.0
+
+
+def latency(kind: str, size: int, rate: float, count: int) -> tuple[float, float, int]:
+    total = count + WARMUP
+    result = _pair(
+        kind,
+        ["--expect", str(count), "--seconds", str(total / rate + 10)],
+        ["--size", str(size), "--rate", str(rate), "--count", str(total)],
+    )
+    lat = result["latencies_ns"]
+    return _pct(lat, 0.5), _pct(lat, 0.99), len(lat)
+
+
+def throughput(kind: str, seconds: float) -> float:
+    result = _pair(
+        kind,
+        ["--seconds", str(seconds + 10)],
+        ["--size", "100", "--rate", "0", "--seconds", str(seconds)],
+    )
+    return float(result["rate"])
+
+
+def first_message(kind: str, runs: int) -> tuple[list[float], list[float]]:
+    pub = _child(
+        "--role", "pub", "--kind", kind, "--size", "100", "--rate", "1000", "--seconds", "600"
+    )
+    _wait_line(pub, "ready")
+    from_start, from_open = [], []
+    try:
+        for _ in range(runs):
+            t0 = time.monotonic_ns()
+            sub = _child("--role", "sub", "--kind", kind, "--first", "--seconds", "10")
+            result = _result(sub)
+            if result["first_ns"] is None:
+                raise RuntimeError("the subscriber got no message in 10 s")
+            from_start.append((result["first_ns"] - t0) / 1e6)
+            from_open.append((result["first_ns"] - result["opened_ns"]) / 1e6)
+    finally:
+        pub.send_signal(2)
+        try:
+            pub.communicate(timeout=10)
+        except subprocess.TimeoutExpired:
+            pub.kill()
+            pub.communicate()
+    return from_start, from_open
+
+
+def main() -> int:
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("--role", choices=["pub", "sub"])
+    parser.add_argument("--kind", choices=["raw", "lk"], default="lk")
+    parser.add_argument("--size", type=int, default=100)
+    parser.add_argument("--rate", type=float, default=1000.0)
+    parser.add_argument("--count", type=int, default=0)
+    parser.add_argument("--seconds", type=float, default=0.0)
+    parser.add_argument("--expect", type=int, default=0)
+    parser.add_argument("--first", action="store_true")
+    parser.add_argument("--quick", action="store_true", help="fewer messages (a smoke run)")
+    args = parser.parse_args()
+    if args.role == "pub":
+        role_pub(args.kind, args.size, args.rate, args.count, args.seconds)
+        return 0
+    if args.role == "sub":
+        role_sub(args.kind, args.expect, args.seconds, args.first)
+        return 0
+
+    from launchkit.ros.router import start_router
+
+    with socket.socket() as sock:
+        sock.bind(("127.0.0.1", 0))
+        port = sock.getsockname()[1]
+    endpoint = f"tcp/127.0.0.1:{port}"
+    os.environ["LAUNCHKIT_ROUTER"] = endpoint
+    router = start_router(endpoint)
+    scale = 10 if args.quick else 1
+    print(f"# transport benchmark, {datetime.now(timezone.utc):%Y-%m-%d %H:%M} UTC")
+    print(f"# {platform.platform()}, {os.cpu_count()} cores, Python {platform.python_version()}")
+    print(f"# router {endpoint}; both sides are peers behind it (rmw_zenoh topology)")
+    results: dict[str, dict[str, Any]] = {}
+    try:
+        for kind, label in (("raw", "raw zenoh"), ("lk", "launchkit.ros")):
+            r: dict[str, Any] = {}
+            r["small"] = latency(kind, 100, 1000.0, 3000 // scale)
+            r["large"] = latency(kind, 100_000, 100.0, 500 // scale)
+            r["throughput"] = throughput(kind, 3.0 / (3 if args.quick else 1))
+            r["first"] = first_message(kind, 5 if not args.quick else 2)
+            results[kind] = r
+            s50, s99, sn = r["small"]
+            l50, l99, ln = r["large"]
+            starts, opens = r["first"]
+            print(f"{label:14s} 100 B  latency p50 {s50:8.1f} us  p99 {s99:8.1f} us  (n={sn})")
+            print(f"{label:14s} 100 KB latency p50 {l50:8.1f} us  p99 {l99:8.1f} us  (n={ln})")
+            print(f"{label:14s} 100 B  throughput {r['throughput']:10.0f} msg/s")
+            print(
+                f"{label:14s} first message: from process start median "
+                f"{statistics.median(starts):6.1f} ms "
+                f"(min {min(starts):.1f}, max {max(starts):.1f}); "
+                f"from init/open median {statistics.median(opens):6.1f} ms "
+                f"(min {min(opens):.1f}, max {max(opens):.1f})"
+            )
+    finally:
+        router.close()
+    ratio = results["lk"]["small"][0] / results["raw"]["small"][0]
+    large_ratio = results["lk"]["large"][0] / results["raw"]["large"][0]
+    print(
+        f"100 KB p50 ratio {large_ratio:.2f}; throughput ratio "
+        f"{results['lk']['throughput'] / results['raw']['throughput']:.2f} (launchkit/raw zenoh)"
+    )
+    first = statistics.median(results["lk"]["first"][1])
+    print(
+        f"transport: p50 ratio {ratio:.2f} (launchkit/raw zenoh), "
+        f"throughput {results['lk']['throughput']:.0f} msg/s, first message {first:.1f} ms"
+    )
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
