@@ -13,22 +13,27 @@ cannot express them.
 from __future__ import annotations
 
 import io
-import math
-from collections.abc import Iterable, Mapping
+from collections.abc import Mapping
 from dataclasses import dataclass
 
 import yourdfpy
 from lxml import etree
 
 from launchkit.errors import Location, UserError
+from launchkit.stock.rotations import (
+    Quaternion,
+    Vector,
+    axis_angle,
+    matrix_to_quaternion,
+    quaternion_multiply,
+    rotate,
+    unit,
+)
 
 #: Joint types whose position comes from ``/joint_states``.
 MOVING_TYPES = frozenset({"revolute", "continuous", "prismatic"})
 #: Joint types published once on ``/tf_static``.
 FIXED_TYPES = frozenset({"fixed", "floating", "planar"})
-
-Vector = tuple[float, float, float]
-Quaternion = tuple[float, float, float, float]  # x, y, z, w as in geometry_msgs
 
 
 class UrdfError(UserError):
@@ -252,7 +257,7 @@ def _joint(joint: yourdfpy.Joint) -> Joint:
     else:
         translation = (float(matrix[0][3]), float(matrix[1][3]), float(matrix[2][3]))
         rotation = matrix_to_quaternion([[float(v) for v in row[:3]] for row in matrix[:3]])
-    axis = _unit(joint.axis if joint.axis is not None else (1.0, 0.0, 0.0))
+    axis = unit(joint.axis if joint.axis is not None else (1.0, 0.0, 0.0))
     mimic = None
     if joint.mimic is not None:
         mimic = Mimic(
@@ -276,67 +281,3 @@ def _joint(joint: yourdfpy.Joint) -> Joint:
         lower,
         upper,
     )
-
-
-# -- rotations (plain math: a state publisher needs a handful per message) ---------------------
-
-
-def _unit(vector: Iterable[float]) -> Vector:
-    x, y, z = (float(v) for v in vector)
-    norm = math.sqrt(x * x + y * y + z * z) or 1.0
-    return (x / norm, y / norm, z / norm)
-
-
-def axis_angle(axis: Vector, angle: float) -> Quaternion:
-    """The rotation by ``angle`` radians about unit vector ``axis``."""
-    s = math.sin(angle / 2.0)
-    return (axis[0] * s, axis[1] * s, axis[2] * s, math.cos(angle / 2.0))
-
-
-def quaternion_multiply(a: Quaternion, b: Quaternion) -> Quaternion:
-    """The rotation ``a`` followed (in the rotated frame) by ``b``: the product ``a * b``."""
-    ax, ay, az, aw = a
-    bx, by, bz, bw = b
-    return (
-        aw * bx + ax * bw + ay * bz - az * by,
-        aw * by - ax * bz + ay * bw + az * bx,
-        aw * bz + ax * by - ay * bx + az * bw,
-        aw * bw - ax * bx - ay * by - az * bz,
-    )
-
-
-def rotate(q: Quaternion, v: Vector) -> Vector:
-    """Vector ``v`` rotated by unit quaternion ``q``."""
-    qv: Quaternion = (v[0], v[1], v[2], 0.0)
-    conj: Quaternion = (-q[0], -q[1], -q[2], q[3])
-    x, y, z, _ = quaternion_multiply(quaternion_multiply(q, qv), conj)
-    return (x, y, z)
-
-
-def rpy_to_quaternion(roll: float, pitch: float, yaw: float) -> Quaternion:
-    """URDF's fixed-axis roll, pitch, yaw (about x, then y, then z) as a quaternion."""
-    qx = axis_angle((1.0, 0.0, 0.0), roll)
-    qy = axis_angle((0.0, 1.0, 0.0), pitch)
-    qz = axis_angle((0.0, 0.0, 1.0), yaw)
-    return quaternion_multiply(qz, quaternion_multiply(qy, qx))
-
-
-def matrix_to_quaternion(m: list[list[float]]) -> Quaternion:
-    """A 3x3 rotation matrix as a unit quaternion with ``w >= 0``."""
-    trace = m[0][0] + m[1][1] + m[2][2]
-    if trace > 0.0:
-        s = math.sqrt(trace + 1.0) * 2.0
-        q = ((m[2][1] - m[1][2]) / s, (m[0][2] - m[2][0]) / s, (m[1][0] - m[0][1]) / s, s / 4.0)
-    elif m[0][0] > m[1][1] and m[0][0] > m[2][2]:
-        s = math.sqrt(1.0 + m[0][0] - m[1][1] - m[2][2]) * 2.0
-        q = (s / 4.0, (m[0][1] + m[1][0]) / s, (m[0][2] + m[2][0]) / s, (m[2][1] - m[1][2]) / s)
-    elif m[1][1] > m[2][2]:
-        s = math.sqrt(1.0 + m[1][1] - m[0][0] - m[2][2]) * 2.0
-        q = ((m[0][1] + m[1][0]) / s, s / 4.0, (m[1][2] + m[2][1]) / s, (m[0][2] - m[2][0]) / s)
-    else:
-        s = math.sqrt(1.0 + m[2][2] - m[0][0] - m[1][1]) * 2.0
-        q = ((m[0][2] + m[2][0]) / s, (m[1][2] + m[2][1]) / s, s / 4.0, (m[1][0] - m[0][1]) / s)
-    if q[3] < 0.0:
-        q = (-q[0], -q[1], -q[2], -q[3])
-    norm = math.sqrt(sum(c * c for c in q))
-    return (q[0] / norm, q[1] / norm, q[2] / norm, q[3] / norm)

@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import asyncio
 import json
+import re
 import struct
 from dataclasses import dataclass, field
 from typing import Any
@@ -12,6 +13,7 @@ from websockets.asyncio.client import ClientConnection, connect
 
 SUBPROTOCOL = "foxglove.sdk.v1"
 MESSAGE_DATA = 0x01
+UNKNOWN_CHANNEL = re.compile(r"Unknown channel ID: (\d+)")
 
 
 @dataclass
@@ -40,6 +42,13 @@ class FoxgloveClient:
             if message["op"] == "advertise":
                 for channel in message["channels"]:
                     self.channels[channel["topic"]] = channel
+            unknown = UNKNOWN_CHANNEL.fullmatch(message.get("message", ""))
+            if message["op"] == "status" and unknown:
+                # foxglove-sdk 0.30 can advertise a channel a moment before it accepts
+                # subscriptions to it (status "Unknown channel ID"): subscribe again
+                channel_id = int(unknown.group(1))
+                topics = [t for t, c in self.channels.items() if c["id"] == channel_id]
+                await self.subscribe(topics)
             return
         if frame[0] == MESSAGE_DATA:
             (subscription,) = struct.unpack_from("<I", frame, 1)
@@ -53,7 +62,10 @@ class FoxgloveClient:
         while not predicate():
             left = end - loop.time()
             if left <= 0:
-                raise AssertionError(f"timed out after {deadline_s} s waiting for {what}")
+                raise AssertionError(
+                    f"timed out after {deadline_s} s waiting for {what}; advertised "
+                    f"{sorted(self.channels)}, received {sorted(self.received)}"
+                )
             try:
                 await self._handle_one(left)
             except asyncio.TimeoutError:

@@ -4,8 +4,6 @@ from __future__ import annotations
 
 import os
 import signal
-import subprocess
-import sys
 from pathlib import Path
 from typing import Any
 
@@ -15,6 +13,7 @@ from launchkit.ros.msgs.sensor_msgs.msg import JointState
 from launchkit.ros.msgs.std_msgs.msg import String
 from launchkit.ros.msgs.tf2_msgs.msg import TFMessage
 
+import launchkit.ros as ros
 from launchkit.stock.urdf import parse_urdf
 from tests.stock.conftest import Processes, latched, spin_until
 
@@ -151,22 +150,18 @@ SMALL = (
 )
 
 
-def _param_set(value: str) -> subprocess.CompletedProcess[str]:
-    return subprocess.run(
-        [
-            sys.executable,
-            "-m",
-            "launchkit",
-            "param",
-            "set",
-            "/robot_state_publisher",
-            "robot_description",
-            value,
-        ],
-        capture_output=True,
-        text=True,
-        timeout=60,
-    )
+def _set_description(probe: Any, value: str) -> Any:
+    """Set robot_state_publisher's robot_description through its parameter service."""
+    from launchkit.ros.msgs import get_message, get_service
+
+    srv = get_service("rcl_interfaces/srv/SetParameters")
+    client = probe.create_client(srv, "/robot_state_publisher/set_parameters")
+    assert client.wait_for_service(timeout_sec=15.0), "robot_state_publisher's parameter service"
+    value_msg = ros.Parameter("robot_description", value=value).to_msg_value()
+    param = get_message("rcl_interfaces/msg/Parameter")(name="robot_description", value=value_msg)
+    future = client.call_async(srv.Request(parameters=[param]))
+    spin_until(probe, future.done, "the set_parameters answer")
+    return future.result().results[0]
 
 
 def test_rsp_takes_a_new_valid_description_at_run_time(
@@ -179,14 +174,13 @@ def test_rsp_takes_a_new_valid_description_at_run_time(
     probe.create_subscription(TFMessage, "/tf_static", statics.append, latched())
     spin_until(probe, lambda: bool(descriptions and statics), "the first description")
 
-    rejected = _param_set(
-        "<robot name='bad'><link name='a'/><joint name='j' type='hinge'/></robot>"
-    )
-    assert rejected.returncode == 1
-    assert "joint 'j' has type 'hinge'" in rejected.stdout
+    bad = "<robot name='bad'><link name='a'/><joint name='j' type='hinge'/></robot>"
+    rejected = _set_description(probe, bad)
+    assert not rejected.successful
+    assert "joint 'j' has type 'hinge'" in rejected.reason
 
-    accepted = _param_set(SMALL)
-    assert accepted.returncode == 0, accepted.stdout + accepted.stderr
+    accepted = _set_description(probe, SMALL)
+    assert accepted.successful, accepted.reason
     spin_until(probe, lambda: descriptions[-1].data == SMALL, "the new description")
     spin_until(
         probe,

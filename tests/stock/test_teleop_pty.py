@@ -2,8 +2,11 @@
 
 from __future__ import annotations
 
+import os
 import shlex
+import signal
 import sys
+from pathlib import Path
 from typing import Any
 
 import pexpect
@@ -104,3 +107,32 @@ def test_not_a_terminal_is_a_user_error(router: str) -> None:
     )
     assert proc.returncode == 2
     assert "is not one" in proc.stderr and "Traceback" not in proc.stderr
+
+
+@pytest.mark.parametrize("signum", [signal.SIGTERM, signal.SIGHUP])
+def test_signals_stop_the_robot_and_restore_the_terminal(
+    router: str, probe: Any, signum: int
+) -> None:
+    received: list[Any] = []
+    probe.create_subscription(Twist, "/cmd_vel", received.append, 10)
+    child = _spawn()
+    try:
+        child.expect_exact("CTRL-C to quit")
+        spin_until(probe, lambda: probe.count_publishers("/cmd_vel") > 0, "teleop's publisher")
+        child.send("i")
+        spin_until(probe, lambda: bool(received) and received[-1].linear.x == 0.5, "forward")
+        node_pid = _node_pid(child.pid)
+        os.kill(node_pid, signum)
+        child.expect_exact("EXIT=0")
+        spin_until(probe, lambda: received[-1] == Twist(), f"the zero twist sent on {signum}")
+        stty = child.read()
+        assert " -icanon" not in stty and " -echo " not in stty, stty
+    finally:
+        _close(child)
+
+
+def _node_pid(shell_pid: int) -> int:
+    """The teleop process started by the test's shell (its only child)."""
+    children = Path(f"/proc/{shell_pid}/task/{shell_pid}/children").read_text().split()
+    assert len(children) == 1, children
+    return int(children[0])

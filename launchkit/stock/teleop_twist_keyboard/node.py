@@ -7,7 +7,9 @@ Parameters as the original's: ``speed`` (0.5), ``turn`` (1.0), ``speed_limit`` a
 
 from __future__ import annotations
 
+import signal
 import sys
+import threading
 from typing import Any
 
 import launchkit.ros as ros
@@ -24,6 +26,7 @@ def main(argv: list[str]) -> int:
     """Run the node until Ctrl-C or a shutdown; the terminal is always restored."""
     reader = KeyReader(sys.stdin.fileno())  # fails before any ROS set-up when not a terminal
     ros.init(argv)
+    stop = _stop_on_signals()
     node = ros.Node("teleop_twist_keyboard")
     try:
         stamped = bool(node.declare_parameter("stamped", False).value)
@@ -43,7 +46,7 @@ def main(argv: list[str]) -> int:
         with reader:
             _say(teleop.start_lines())
             try:
-                while ros.ok():
+                while ros.ok() and not stop.is_set():
                     key = reader.read_key(POLL_SEC)
                     if key is None:
                         continue
@@ -58,6 +61,18 @@ def main(argv: list[str]) -> int:
         node.destroy_node()
         ros.shutdown()
     return 0
+
+
+def _stop_on_signals() -> threading.Event:
+    """An event set by SIGINT, SIGTERM or SIGHUP.
+
+    These replace the ROS layer's handlers, which would shut the node down at once: the key loop
+    stops instead, so the zero twist still goes out before the node closes.
+    """
+    stop = threading.Event()
+    for signum in (signal.SIGINT, signal.SIGTERM, signal.SIGHUP):
+        signal.signal(signum, lambda *_: stop.set())
+    return stop
 
 
 def _say(lines: list[str]) -> None:
