@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import argparse
+import time
 from typing import Any
 
 from launchkit.errors import RuntimeLaunchError
@@ -78,8 +79,17 @@ def _known_nodes(node: Node) -> list[str]:
     )
 
 
+_NODE_WAIT = 3.0  # seconds a named node may take to show up in a fresh session's graph
+
+
 def _require_node(node: Node, target: str) -> None:
-    if target not in _known_nodes(node):
+    # A busy machine can answer the first graph queries with part of the graph: a node the user
+    # names is looked for again until it shows up or _NODE_WAIT has passed.
+    deadline = time.monotonic() + _NODE_WAIT
+    while target not in _known_nodes(node):
+        if time.monotonic() < deadline:
+            time.sleep(0.1)
+            continue
         raise CliUsageError(
             f"unknown node {target}", expected="a node listed by `launchkit node list`"
         )
