@@ -21,6 +21,7 @@ from dataclasses import dataclass, field
 from typing import Any
 
 from launchkit.stock.gazebo_ros import messages
+from launchkit.stock.gazebo_ros._shutdown import shutdown_within
 from launchkit.stock.gazebo_ros.plugin_processes import PluginProcesses
 from launchkit.stock.gazebo_ros.sim.engine import Entity, Simulation, SimulationError
 from launchkit.stock.gazebo_ros.sim.model import ModelError
@@ -356,7 +357,7 @@ def main(argv: list[str] | None = None) -> int:
     finally:
         if server is not None:
             server.close()
-        ros.shutdown()
+        shutdown_within(ros, 2.0, 0)
     return 0
 
 
