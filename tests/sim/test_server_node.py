@@ -83,6 +83,8 @@ class Server:
             try:
                 self.proc.wait(10)
             except subprocess.TimeoutExpired:
+                self.proc.send_signal(signal.SIGUSR1)  # its stacks, for the report
+                time.sleep(0.5)
                 os.killpg(self.proc.pid, signal.SIGKILL)
                 self.proc.wait()
         self._reader.join(5)
@@ -123,7 +125,7 @@ def server(network: Context) -> Iterator[Server]:
         survivors = [pid for pid in pids if _alive(pid)]
         for pid in survivors:  # never leave one behind, even when failing
             os.kill(pid, signal.SIGKILL)
-        assert status == 0
+        assert status == 0, "gazebo did not stop on SIGINT:\n" + "\n".join(process.seen[-60:])
         assert survivors == [], "diff drive children outlived the server"
 
 

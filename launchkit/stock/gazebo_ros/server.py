@@ -12,6 +12,7 @@ the diff drive reads, 100), ``gui`` (false), ``egl`` (false), ``world``.
 from __future__ import annotations
 
 import argparse
+import faulthandler
 import importlib
 import os
 import signal
@@ -32,6 +33,11 @@ from launchkit.stock.gazebo_ros.sim.world import load_world, resolve_world
 
 INIT_PLUGIN = "libgazebo_ros_init.so"
 FACTORY_PLUGIN = "libgazebo_ros_factory.so"
+
+
+#: Seconds a stop request may take before the server prints its stacks and exits hard (under
+#: ROS's default SIGINT -> SIGKILL escalation of 10 s).
+STOP_WATCHDOG = 6.0
 
 
 class UsageError(Exception):
@@ -340,10 +346,15 @@ def main(argv: list[str] | None = None) -> int:
 
     def _stop(_signum: int, _frame: object) -> None:
         nonlocal stop_requested
+        if not stop_requested:
+            # If stopping itself gets stuck, print where and exit before the launcher's SIGKILL.
+            faulthandler.dump_traceback_later(STOP_WATCHDOG, exit=True)
         stop_requested = True
         if server is not None:
             server.running = False
 
+    # `kill -USR1 PID` prints every thread's stack: what a stuck server is doing.
+    faulthandler.register(signal.SIGUSR1, all_threads=True)
     # Installed before the (slow) world load, so an early Ctrl-C still ends cleanly.
     signal.signal(signal.SIGTERM, _stop)
     signal.signal(signal.SIGINT, _stop)
