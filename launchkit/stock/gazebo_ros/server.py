@@ -6,7 +6,7 @@ publishes ``/clock``; with the factory plugin it serves ``/spawn_entity`` and ``
 Spawned models get their sensors published and their diff drive run as a child node
 (:mod:`plugin_processes`). Parameters: ``real_time_factor`` (1.0; 0 = as fast as possible),
 ``publish_rate`` (/clock Hz, 10), ``time_step`` (s, 1/240), ``state_rate`` (Hz of the joint states
-the diff drive reads, 100), ``gui`` (false), ``egl`` (false), ``world``.
+the diff drive reads, 120), ``gui`` (false), ``egl`` (false), ``world``.
 """
 
 from __future__ import annotations
@@ -113,7 +113,7 @@ class SimServer:
         rtf = float(p.declare_parameter("real_time_factor", 1.0).value)
         publish_rate = float(p.declare_parameter("publish_rate", 10.0).value)
         time_step = float(p.declare_parameter("time_step", 1.0 / 240.0).value)
-        state_rate = float(p.declare_parameter("state_rate", 100.0).value)
+        state_rate = float(p.declare_parameter("state_rate", 120.0).value)
         gui = bool(p.declare_parameter("gui", options.gui).value)
         egl = bool(p.declare_parameter("egl", False).value)
         world_name = str(p.declare_parameter("world", options.world).value) or "empty"
