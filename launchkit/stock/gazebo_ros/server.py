@@ -292,7 +292,7 @@ class SimServer:
             self.sim.step()
             wait = self.pacer.wait_needed(self.sim.time)
             if wait > 0:
-                self.ros.spin_once(self.node, timeout_sec=wait)
+                self.ros.spin_once(self.node, timeout_sec=min(wait, 0.05))
             elif self.sim.steps % steps_between_spins == 0:
                 self.ros.spin_once(self.node, timeout_sec=0.0)
             if self.sim.steps % 240 == 0:
@@ -355,11 +355,14 @@ def main(argv: list[str] | None = None) -> int:
 
     # `kill -USR1 PID` prints every thread's stack: what a stuck server is doing.
     faulthandler.register(signal.SIGUSR1, all_threads=True)
-    # Installed before the (slow) world load, so an early Ctrl-C still ends cleanly.
+    # Installed before the (slow) world load, so an early Ctrl-C still ends cleanly, and again
+    # after it: creating the node installs the ROS layer's handlers over these.
     signal.signal(signal.SIGTERM, _stop)
     signal.signal(signal.SIGINT, _stop)
     try:
         server = SimServer(ros, options)
+        signal.signal(signal.SIGTERM, _stop)
+        signal.signal(signal.SIGINT, _stop)
         server.running = not stop_requested
         server.run()
     except ModelError as exc:
