@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import os
 import subprocess
 import sys
 from pathlib import Path
@@ -58,14 +59,18 @@ def test_spawn_entity_arguments() -> None:
         ("gazebo", ["no_such_world"], "world 'no_such_world' not found"),
         ("spawn_entity.py", ["-file", "x.urdf"], "-entity"),
         ("spawn_entity.py", ["-entity", "e", "-x", "left", "-file", "f"], "invalid float value"),
+        ("diff_drive", [], "parameter 'entity' is required"),
+        ("diff_drive", ["--ros-args", "-p", "entity:=bot"], "<left_joint> is required"),
     ],
 )
 def test_bad_command_lines_exit_2_with_one_error(
     executable: str, argv: list[str], message: str
 ) -> None:
     command = PackageIndex().executable("gazebo_ros", executable)
+    # A router address nothing listens on: these fail before they need the network.
+    env = {**os.environ, "LAUNCHKIT_ROUTER": "tcp/127.0.0.1:1"}
     result = subprocess.run(
-        [*command, *argv], capture_output=True, text=True, timeout=60, check=False
+        [*command, *argv], capture_output=True, text=True, timeout=60, check=False, env=env
     )
     assert result.returncode == 2
     assert message in result.stderr

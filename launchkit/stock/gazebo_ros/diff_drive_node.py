@@ -14,6 +14,7 @@ import sys
 from typing import Any
 
 from launchkit.stock.gazebo_ros import messages
+from launchkit.stock.gazebo_ros._shutdown import shutdown_within
 from launchkit.stock.gazebo_ros.diff_drive import (
     BaseState,
     DiffDriveConfigError,
@@ -157,7 +158,7 @@ def main(argv: list[str] | None = None) -> int:
     except KeyboardInterrupt:
         pass
     finally:
-        ros.shutdown()
+        shutdown_within(ros, 2.0, 0)
     return 0
 
 

@@ -6,12 +6,13 @@ publishes ``/clock``; with the factory plugin it serves ``/spawn_entity`` and ``
 Spawned models get their sensors published and their diff drive run as a child node
 (:mod:`plugin_processes`). Parameters: ``real_time_factor`` (1.0; 0 = as fast as possible),
 ``publish_rate`` (/clock Hz, 10), ``time_step`` (s, 1/240), ``state_rate`` (Hz of the joint states
-the diff drive reads, 100), ``gui`` (false), ``egl`` (false), ``world``.
+the diff drive reads, 120), ``gui`` (false), ``egl`` (false), ``world``.
 """
 
 from __future__ import annotations
 
 import argparse
+import faulthandler
 import importlib
 import os
 import signal
@@ -21,6 +22,7 @@ from dataclasses import dataclass, field
 from typing import Any
 
 from launchkit.stock.gazebo_ros import messages
+from launchkit.stock.gazebo_ros._shutdown import shutdown_within
 from launchkit.stock.gazebo_ros.plugin_processes import PluginProcesses
 from launchkit.stock.gazebo_ros.sim.engine import Entity, Simulation, SimulationError
 from launchkit.stock.gazebo_ros.sim.model import ModelError
@@ -31,6 +33,11 @@ from launchkit.stock.gazebo_ros.sim.world import load_world, resolve_world
 
 INIT_PLUGIN = "libgazebo_ros_init.so"
 FACTORY_PLUGIN = "libgazebo_ros_factory.so"
+
+
+#: Seconds a stop request may take before the server prints its stacks and exits hard (under
+#: ROS's default SIGINT -> SIGKILL escalation of 10 s).
+STOP_WATCHDOG = 6.0
 
 
 class UsageError(Exception):
@@ -106,7 +113,7 @@ class SimServer:
         rtf = float(p.declare_parameter("real_time_factor", 1.0).value)
         publish_rate = float(p.declare_parameter("publish_rate", 10.0).value)
         time_step = float(p.declare_parameter("time_step", 1.0 / 240.0).value)
-        state_rate = float(p.declare_parameter("state_rate", 100.0).value)
+        state_rate = float(p.declare_parameter("state_rate", 120.0).value)
         gui = bool(p.declare_parameter("gui", options.gui).value)
         egl = bool(p.declare_parameter("egl", False).value)
         world_name = str(p.declare_parameter("world", options.world).value) or "empty"
@@ -285,7 +292,7 @@ class SimServer:
             self.sim.step()
             wait = self.pacer.wait_needed(self.sim.time)
             if wait > 0:
-                self.ros.spin_once(self.node, timeout_sec=wait)
+                self.ros.spin_once(self.node, timeout_sec=min(wait, 0.05))
             elif self.sim.steps % steps_between_spins == 0:
                 self.ros.spin_once(self.node, timeout_sec=0.0)
             if self.sim.steps % 240 == 0:
@@ -339,15 +346,23 @@ def main(argv: list[str] | None = None) -> int:
 
     def _stop(_signum: int, _frame: object) -> None:
         nonlocal stop_requested
+        if not stop_requested:
+            # If stopping itself gets stuck, print where and exit before the launcher's SIGKILL.
+            faulthandler.dump_traceback_later(STOP_WATCHDOG, exit=True)
         stop_requested = True
         if server is not None:
             server.running = False
 
-    # Installed before the (slow) world load, so an early Ctrl-C still ends cleanly.
+    # `kill -USR1 PID` prints every thread's stack: what a stuck server is doing.
+    faulthandler.register(signal.SIGUSR1, all_threads=True)
+    # Installed before the (slow) world load, so an early Ctrl-C still ends cleanly, and again
+    # after it: creating the node installs the ROS layer's handlers over these.
     signal.signal(signal.SIGTERM, _stop)
     signal.signal(signal.SIGINT, _stop)
     try:
         server = SimServer(ros, options)
+        signal.signal(signal.SIGTERM, _stop)
+        signal.signal(signal.SIGINT, _stop)
         server.running = not stop_requested
         server.run()
     except ModelError as exc:
@@ -356,7 +371,7 @@ def main(argv: list[str] | None = None) -> int:
     finally:
         if server is not None:
             server.close()
-        ros.shutdown()
+        shutdown_within(ros, 2.0, 0)
     return 0
 
 

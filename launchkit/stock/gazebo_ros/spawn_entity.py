@@ -4,7 +4,8 @@
 ``robot_description``, read from its latched publisher) or ``-stdin``; the pose
 ``-x -y -z -R -P -Y``;
 ``-timeout`` (seconds to wait for the topic, 30) and ``-spawn_service_timeout`` (seconds to wait
-for ``/spawn_entity``, 5). Exit status 0 when the entity is spawned; 2 with one error line
+for ``/spawn_entity``, 30; gazebo_ros says 5, too short for a loaded 2-core machine starting
+every node at once). Exit status 0 when the entity is spawned; 2 with one error line
 otherwise.
 """
 
@@ -48,7 +49,7 @@ def parse_args(argv: list[str]) -> argparse.Namespace:
     parser.add_argument("-reference_frame", default="")
     parser.add_argument("-robot_namespace", default="")
     parser.add_argument("-timeout", type=float, default=30.0)
-    parser.add_argument("-spawn_service_timeout", type=float, default=5.0)
+    parser.add_argument("-spawn_service_timeout", type=float, default=30.0)
     parser.add_argument("-unpause", action="store_true")
     return parser.parse_args(argv)
 
