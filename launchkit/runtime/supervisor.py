@@ -133,6 +133,10 @@ class Supervisor:
         while not self._done():
             timeout = self._timeout()
             for key, _ in self._selector.select(timeout):
+                # An earlier event of this batch may have unregistered this fd (a process
+                # exited and its streams were closed; the number may even be reused already).
+                if self._selector.get_map().get(key.fd) is not key:
+                    continue
                 key.data()
             if self._needs_polling:
                 for process in list(self.processes):
