@@ -34,7 +34,11 @@ class WorkQueue:
     """The queue zenoh threads fill and the spinning thread drains."""
 
     def __init__(self) -> None:
-        self._queue: queue.SimpleQueue[Work] = queue.SimpleQueue()
+        # Not SimpleQueue: in CPython < 3.12 its get(timeout) can block forever once a signal
+        # interrupts the wait after the deadline (the remaining time goes negative, which the
+        # lock takes as "no timeout"); the node then never sees its shutdown. queue.Queue
+        # waits on a Condition, which keeps the deadline.
+        self._queue: queue.Queue[Work] = queue.Queue()
         self.put = self._queue.put
 
     def get(self, timeout: float | None) -> Work | None:
