@@ -18,6 +18,4 @@ def test_gazebo_and_rviz_launch_spawns_and_runs_the_robot(launch: Any) -> None:
     handle.process("gzserver").wait_output("started plugin node 'gazebo_base_controller'", 5)
     handle.process("robot_state_publisher").wait_output("publishing robot", 20)
     result = handle.stop()
-    # gzserver may exit 1 through its stop watchdog (a known ROS layer stall, see
-    # test_server_node.py); it must never need SIGKILL.
-    result.assert_exit_codes({"gzserver": {0, 1}, "spawn_entity.py": 0, "robot_state_publisher": 0})
+    result.assert_exit_codes({"gzserver": 0, "spawn_entity.py": 0, "robot_state_publisher": 0})
