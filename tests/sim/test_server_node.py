@@ -201,6 +201,11 @@ def test_spawned_robot_publishes_drives_and_turns(probe: Node) -> None:
 
     # Forward: 0.5 m/s for 2 s of sim time. The seed's wheels drive it toward base -x.
     cmd.publish(Twist(linear=Vector3(x=0.5)))
+    # Measure from the first sign of motion: on a loaded machine the command may reach the
+    # server (stepping at 4x real time) a good part of a simulated second later.
+    spin_until(
+        probe, lambda: abs(odom[-1].twist.twist.linear.x) > 0.02, 20, "the robot to start moving"
+    )
     start = odom[-1]
     spin_until(probe, lambda: stamp(odom[-1]) > stamp(start) + 2.0, 20, "2 s of odometry")
     cmd.publish(Twist())
@@ -215,8 +220,9 @@ def test_spawned_robot_publishes_drives_and_turns(probe: Node) -> None:
     )
 
     # Turn: +1 rad/s is counter-clockwise.
-    before = odom[-1]
     cmd.publish(Twist(angular=Vector3(z=1.0)))
+    spin_until(probe, lambda: odom[-1].twist.twist.angular.z > 0.02, 20, "the robot to turn")
+    before = odom[-1]
     spin_until(probe, lambda: stamp(odom[-1]) > stamp(before) + 1.5, 20, "1.5 s of turning")
     cmd.publish(Twist())
     turned = yaw_of(_quaternion(odom[-1])) - yaw_of(_quaternion(before))
