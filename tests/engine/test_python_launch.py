@@ -138,3 +138,18 @@ def test_on_exit_shutdown(evaluate_xml: EvaluateXml) -> None:
     with pytest.raises(LaunchFileError, match="on_exit with actions") as caught:
         evaluate_xml(bad, name="exit2.launch.py")
     assert caught.value.location is not None and caught.value.location.line == 6
+
+
+def test_command_concatenates_its_parts(evaluate_xml: EvaluateXml, tmp_path: Path) -> None:
+    (tmp_path / "model.txt").write_text("<robot/>")
+    code = (
+        "from launch import LaunchDescription\n"
+        "from launch.actions import DeclareLaunchArgument, LogInfo\n"
+        "from launch.substitutions import Command, LaunchConfiguration\n"
+        "def generate_launch_description():\n"
+        "    return LaunchDescription([\n"
+        f"        DeclareLaunchArgument('model', default_value='{tmp_path}/model.txt'),\n"
+        "        LogInfo(msg=Command(['cat ', LaunchConfiguration('model')])),\n"
+        "    ])\n"
+    )
+    assert evaluate_xml(code, name="cmd.launch.py").messages() == ["<robot/>"]

@@ -147,10 +147,11 @@ class _Joined(Substitution):
 
 
 class Command_(SubstitutionLike):
-    """``launch.substitutions.Command``."""
+    """``launch.substitutions.Command``: its parts are concatenated into one command line (as
+    in ROS, ``Command(['xacro ', path])``), which is then split like a shell would."""
 
     def __init__(self, command: Any, *, on_stderr: str = "fail") -> None:
-        super().__init__(Command([_argv_text(command), to_value(on_stderr)], here()))
+        super().__init__(Command([to_value(command), to_value(on_stderr)], here()))
 
 
 class FindExecutable(SubstitutionLike):
