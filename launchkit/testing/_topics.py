@@ -2,7 +2,6 @@
 
 from __future__ import annotations
 
-import threading
 from collections.abc import Callable
 from typing import Any
 
@@ -26,7 +25,6 @@ class TopicProbe:
         self.context = ros.Context(router=router)
         self.context.init([], domain_id)
         self.node = ros.Node("launchkit_test_probe", context=self.context, enable_rosout=False)
-        self._lock = threading.Lock()
 
     def close(self) -> None:
         """Leave the network (closes the Zenoh session)."""
