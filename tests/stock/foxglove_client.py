@@ -83,3 +83,25 @@ class FoxgloveClient:
             self.subscriptions[sub_id] = topic
             subs.append({"id": sub_id, "channelId": self.channels[topic]["id"]})
         await self._ws.send(json.dumps({"op": "subscribe", "subscriptions": subs}))
+
+
+def receive_topics(url: str, topics: list[str], timeout: float = 20.0) -> FoxgloveClient:
+    """Connect to ``url``, wait until ``topics`` are advertised, subscribe to them and wait for a
+    message on each; the client, with what it received."""
+
+    async def session() -> FoxgloveClient:
+        async with FoxgloveClient(url) as client:
+            await client.wait_for(
+                f"rviz2 to advertise {topics}",
+                lambda: all(t in client.channels for t in topics),
+                timeout,
+            )
+            await client.subscribe(topics)
+            await client.wait_for(
+                f"messages on {topics}",
+                lambda: all(t in client.received for t in topics),
+                timeout,
+            )
+            return client
+
+    return asyncio.run(session())

@@ -3,12 +3,11 @@ rviz2) launched for real, checked from a Foxglove client as a user's viewer woul
 
 from __future__ import annotations
 
-import asyncio
 from typing import Any
 
 from launchkit.ros.msgs import deserialize
 from tests.stock.conftest import free_port
-from tests.stock.foxglove_client import FoxgloveClient
+from tests.stock.foxglove_client import receive_topics
 
 TOPICS = ["/robot_description", "/tf_static", "/joint_states", "/tf"]
 
@@ -18,20 +17,7 @@ def test_display_launch_shows_the_robot_in_foxglove(launch: Any) -> None:
     handle = launch("robot_wheel", "display.launch.xml", env={"LAUNCHKIT_FOXGLOVE_PORT": str(port)})
     handle.process("rviz2").wait_output(f"ws://127.0.0.1:{port}", timeout=20)
 
-    async def session() -> FoxgloveClient:
-        async with FoxgloveClient(f"ws://127.0.0.1:{port}") as client:
-            await client.wait_for(
-                f"rviz2 to advertise {TOPICS}",
-                lambda: all(t in client.channels for t in TOPICS),
-                20,
-            )
-            await client.subscribe(TOPICS)
-            await client.wait_for(
-                f"messages on {TOPICS}", lambda: all(t in client.received for t in TOPICS), 20
-            )
-            return client
-
-    client = asyncio.run(session())
+    client = receive_topics(f"ws://127.0.0.1:{port}", list(TOPICS))
     description = deserialize(client.received["/robot_description"][0], "std_msgs/msg/String")
     assert 'robot name="three_wheeled_robot"' in description.data
     static = deserialize(client.received["/tf_static"][0], "tf2_msgs/msg/TFMessage")

@@ -2,7 +2,6 @@
 
 from __future__ import annotations
 
-import asyncio
 import queue
 import threading
 import time
@@ -17,7 +16,7 @@ from launchkit.ros.msgs.tf2_msgs.msg import TFMessage
 import launchkit.ros as ros
 from launchkit.ros.msgs import deserialize
 from tests.stock.conftest import Processes, free_port, latched
-from tests.stock.foxglove_client import FoxgloveClient
+from tests.stock.foxglove_client import receive_topics
 
 URDF = (Path(__file__).parents[2] / "urdf" / "three_wheeled_robot.urdf").read_text()
 CONFIG = Path(__file__).parents[2] / "config" / "robot.rviz"  # robot_wheel's
@@ -68,21 +67,8 @@ def test_late_foxglove_client_gets_latched_and_live_topics(
     publisher = threading.Thread(target=keep_publishing)
     publisher.start()
 
-    async def session() -> FoxgloveClient:
-        async with FoxgloveClient(f"ws://127.0.0.1:{port}") as client:
-            await client.wait_for(
-                f"rviz2 to advertise {TOPICS}",
-                lambda: all(t in client.channels for t in TOPICS),
-                20,
-            )
-            await client.subscribe(TOPICS)
-            await client.wait_for(
-                f"messages on {TOPICS}", lambda: all(t in client.received for t in TOPICS), 20
-            )
-            return client
-
     try:
-        client = asyncio.run(session())
+        client = receive_topics(f"ws://127.0.0.1:{port}", list(TOPICS))
     finally:
         stop.set()
         publisher.join()
