@@ -7,7 +7,7 @@ from pathlib import Path
 
 import pytest
 
-from launchkit.errors import LaunchFileError
+from launchkit.errors import LaunchFileError, LaunchkitError
 from launchkit.frontend.python_launch import launch_api
 from launchkit.packages import PackageIndex, PythonPackage
 from tests.conftest import EvaluateXml
@@ -153,3 +153,34 @@ def test_command_concatenates_its_parts(evaluate_xml: EvaluateXml, tmp_path: Pat
         "    ])\n"
     )
     assert evaluate_xml(code, name="cmd.launch.py").messages() == ["<robot/>"]
+
+
+def test_ament_index_lookups(
+    evaluate_xml: EvaluateXml, tmp_path: Path, monkeypatch: pytest.MonkeyPatch
+) -> None:
+    prefix = tmp_path / "install"
+    (prefix / "share" / "ament_index" / "resource_index" / "packages").mkdir(parents=True)
+    (prefix / "share" / "ament_index" / "resource_index" / "packages" / "amentpkg").touch()
+    (prefix / "share" / "amentpkg").mkdir()
+    monkeypatch.setenv("AMENT_PREFIX_PATH", str(prefix))
+    code = (
+        "from ament_index_python.packages import get_package_share_directory, get_package_prefix\n"
+        "from launch import LaunchDescription\n"
+        "from launch.actions import LogInfo\n"
+        "def generate_launch_description():\n"
+        "    return LaunchDescription([\n"
+        "        LogInfo(msg=get_package_share_directory('amentpkg')),\n"
+        "        LogInfo(msg=get_package_prefix('amentpkg')),\n"
+        "        LogInfo(msg=get_package_prefix('robot_wheel')),\n"
+        "        LogInfo(msg=get_package_prefix('nopkg')),\n"
+        "    ])\n"
+    )
+    with pytest.raises(LaunchkitError, match="nopkg") as caught:
+        evaluate_xml(code, name="ament.launch.py")
+    assert caught.value.location is not None and caught.value.location.line == 9
+    found = evaluate_xml(
+        code.replace("        LogInfo(msg=get_package_prefix('nopkg')),\n", ""),
+        name="ament2.launch.py",
+    )
+    python_prefix = PackageIndex().find("robot_wheel").prefix  # a Python package's own prefix
+    assert found.messages() == [str(prefix / "share" / "amentpkg"), str(prefix), str(python_prefix)]

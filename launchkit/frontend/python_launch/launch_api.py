@@ -7,7 +7,6 @@ the ROS keyword arguments), so the loaded file needs no translation step afterwa
 from __future__ import annotations
 
 from collections.abc import Iterable, Mapping
-from pathlib import Path
 from typing import Any
 
 from launchkit.description import actions as lk
@@ -33,6 +32,7 @@ from launchkit.description.substitutions import (
 )
 from launchkit.description.substitutions import Or as OrSub
 from launchkit.description.substitutions.base import Substitution, perform
+from launchkit.errors import PackageNotFoundError
 from launchkit.frontend.python_launch.values import (
     SubstitutionLike,
     here,
@@ -40,6 +40,7 @@ from launchkit.frontend.python_launch.values import (
     to_value,
     unsupported,
 )
+from launchkit.packages import FoundPackage, PackageIndex
 
 # -- the description ---------------------------------------------------------------------------
 
@@ -434,13 +435,11 @@ class Shutdown(lk.Shutdown):
         super().__init__(to_value(reason), here(), condition)
 
 
-def package_path(name: str) -> Path:
-    """``ament_index_python.packages.get_package_share_directory`` through launchkit's index."""
-    from launchkit.errors import PackageNotFoundError
-    from launchkit.packages import PackageIndex
-
+def find_package(index: PackageIndex, name: str) -> FoundPackage:
+    """``ament_index_python``'s lookups through launchkit's package index; an unknown package is
+    an error at the launch file's line."""
     try:
-        return PackageIndex().share_dir(name)
+        return index.find(name)
     except PackageNotFoundError as error:
         location = here()
         if error.location is None and location is not None:

@@ -16,6 +16,7 @@ from launchkit.frontend.python_launch import launch_api as L
 from launchkit.frontend.python_launch import ros_api as R
 from launchkit.frontend.python_launch import values
 from launchkit.frontend.python_launch.values import unsupported
+from launchkit.packages import PackageIndex
 
 
 def _module(name: str, **members: object) -> types.ModuleType:
@@ -102,11 +103,13 @@ def _stand_in_modules() -> dict[str, types.ModuleType]:
     )
     launch_ros = _module("launch_ros", actions=ros_actions, substitutions=ros_substitutions)
 
+    index = PackageIndex()  # one per load: entry points are read once
+
     def get_package_share_directory(package_name: str) -> str:
-        return str(L.package_path(package_name))
+        return str(L.find_package(index, package_name).share)
 
     def get_package_prefix(package_name: str) -> str:
-        return str(L.package_path(package_name).parent.parent)
+        return str(L.find_package(index, package_name).prefix)
 
     packages = _module(
         "ament_index_python.packages",
