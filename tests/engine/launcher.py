@@ -158,3 +158,14 @@ def run_launchkit(
         check=False,
         env={**os.environ, **(env or {})},
     )
+
+
+def executable(name: str, code: str, **attrs: str) -> str:
+    """An ``<executable>`` element running Python ``code``, its output on the screen."""
+    extra = " ".join(f'{k}="{v}"' for k, v in attrs.items())
+    # The code goes inside a single-quoted shell word: its own quotes become double quotes.
+    escaped = code.replace("'", '"').replace("&", "&amp;").replace('"', "&quot;")
+    return (
+        f'<executable name="{name}" output="screen" {extra} '
+        f"cmd=\"{sys.executable} -c '{escaped}'\"/>"
+    )

@@ -4,20 +4,10 @@ the launcher being SIGKILLed are in test_supervision.py, which drives the launch
 
 from __future__ import annotations
 
-import sys
 from pathlib import Path
 
 from launchkit.testing import in_order
-
-PY = sys.executable
-
-
-def executable(name: str, code: str, **attrs: str) -> str:
-    """An ``<executable>`` element running Python ``code`` on the screen."""
-    extra = " ".join(f'{k}="{v}"' for k, v in attrs.items())
-    # The code goes inside a single-quoted shell word: its own quotes become double quotes.
-    escaped = code.replace("'", '"').replace("&", "&amp;").replace('"', "&quot;")
-    return f'<executable name="{name}" output="screen" {extra} cmd="{PY} -c \'{escaped}\'"/>'
+from tests.engine.launcher import executable
 
 
 def launch_file(tmp_path: Path, body: str) -> Path:

@@ -10,14 +10,11 @@ from __future__ import annotations
 
 import os
 import signal
-import sys
 from pathlib import Path
 
 import pytest
 
-from tests.engine.launcher import Launcher, alive, wait_gone
-
-PY = sys.executable
+from tests.engine.launcher import Launcher, alive, executable, wait_gone
 
 IGNORE_SIGINT = (
     "import signal, time; signal.signal(signal.SIGINT, signal.SIG_IGN); "
@@ -30,14 +27,6 @@ def write(tmp_path: Path, body: str, name: str = "t.launch.xml") -> Path:
     path = tmp_path / name
     path.write_text(f"<launch>\n{body}\n</launch>\n")
     return path
-
-
-def executable(name: str, code: str, **attrs: str) -> str:
-    """An ``<executable>`` element running Python ``code``."""
-    extra = " ".join(f'{k}="{v}"' for k, v in attrs.items())
-    # The code goes inside a single-quoted shell word: its own quotes become double quotes.
-    escaped = code.replace("'", '"').replace("&", "&amp;").replace('"', "&quot;")
-    return f'<executable name="{name}" output="screen" {extra} cmd="{PY} -c \'{escaped}\'"/>'
 
 
 @pytest.fixture
