@@ -1,13 +1,14 @@
 """End to end: the seed's gazebo_and_rviz.launch.xml brings the three-wheeled robot up in
 PyBullet, headless; its topics flow, /cmd_vel drives it, and Ctrl-C leaves nothing behind.
 
-As in the seed, ``joint_state_publisher`` runs beside the launch, "in a second terminal"
-(``launchkit exec``): nothing in the seed's launch file or URDF publishes /joint_states.
-
 The seed robot's wheel conventions are inverted (reference/simulation.md §3.1): as in Gazebo,
 ``linear.x > 0`` moves the base toward its own -x (the caster side, where camera and lidar look)
-and ``angular.z > 0`` turns it counter-clockwise. The lidar publishes where gazebo_ros puts it for
-the seed's plugin block, ``/gazebo_lidar/out`` (the plugin's ``~/out``).
+and ``angular.z > 0`` turns it counter-clockwise.
+
+Two topics come from launchkit's choices where Gazebo would leave the seed without them
+(docs/simulation.md): the lidar on ``/scan`` (gazebo_ros: ``/gazebo_lidar/out``) and
+``/joint_states`` from the simulator, which stands back while the seed's "second terminal"
+``joint_state_publisher`` runs.
 """
 
 from __future__ import annotations
@@ -29,13 +30,12 @@ from launchkit.ros.msgs.geometry_msgs.msg import Twist, Vector3
 
 import launchkit.ros as ros
 
-SCAN = "/gazebo_lidar/out"
+SCAN = "/scan"
 
 
 @pytest.fixture(scope="module")
 def robot(launch_module):  # type: ignore[no-untyped-def]
-    """The robot launch with the obstacle world, without the viewer, and the seed's
-    joint_state_publisher in a "second terminal"."""
+    """The robot launch with the obstacle world, without the viewer."""
     handle = launch_module(
         "robot_wheel",
         "gazebo_and_rviz.launch.xml",
@@ -43,28 +43,27 @@ def robot(launch_module):  # type: ignore[no-untyped-def]
         ready_timeout=60,
     )
     assert handle.process("spawn_entity.py").wait_exit(timeout=60) == 0
-    second_terminal = subprocess.Popen(
-        [
-            sys.executable,
-            "-m",
-            "launchkit",
-            "exec",
-            "joint_state_publisher",
-            "joint_state_publisher",
-        ],
+    return handle
+
+
+@contextmanager
+def second_terminal(handle: Any, *command: str) -> Iterator[subprocess.Popen[bytes]]:
+    """``launchkit exec COMMAND`` beside the launch, as a user's second terminal; Ctrl-C after."""
+    process = subprocess.Popen(
+        [sys.executable, "-m", "launchkit", "exec", *command],
         env={**os.environ, **handle.ros_env},
         stdout=subprocess.DEVNULL,
         stderr=subprocess.DEVNULL,
         start_new_session=True,
     )
-    yield handle
-    second_terminal.send_signal(signal.SIGINT)
     try:
-        assert second_terminal.wait(10) == 0
+        yield process
+        process.send_signal(signal.SIGINT)
+        assert process.wait(10) == 0
     finally:
-        if second_terminal.poll() is None:
-            os.killpg(second_terminal.pid, signal.SIGKILL)
-            second_terminal.wait()
+        if process.poll() is None:
+            os.killpg(process.pid, signal.SIGKILL)
+            process.wait()
 
 
 @contextmanager
@@ -110,7 +109,7 @@ def test_the_robot_spawns_and_its_topics_flow(robot) -> None:  # type: ignore[no
     (static,) = robot.expect_topic("/tf_static", within=30)
     assert {t.child_frame_id for t in static.transforms} >= {"lidar", "camera"}
     (joints,) = robot.expect_topic("/joint_states", within=30)
-    assert set(joints.name) >= {"wheel_left_joint", "wheel_right_joint"}
+    assert set(joints.name) == {"wheel_left_joint", "wheel_right_joint", "caster_joint"}
     robot.expect_topic("/tf", within=30, where=lambda m: len(m.transforms) > 0)
     (odom,) = robot.expect_topic("/odom", within=30)
     assert (odom.header.frame_id, odom.child_frame_id) == ("odom", "base")
@@ -136,6 +135,10 @@ def test_linear_x_moves_it_the_commanded_distance(robot) -> None:  # type: ignor
     assert abs(abs(moved) - expected) < 0.15 * expected, (moved, expected)
     truth_moved = truth_end.pose.pose.position.x - truth_start.pose.pose.position.x
     assert abs(truth_moved - moved) < 0.1, (truth_moved, moved)
+    # The wheels turned in /joint_states, so robot_state_publisher's /tf turns them in a viewer.
+    (late,) = robot.expect_topic("/joint_states", within=10, where=lambda m: stamp(m) >= stamp(end))
+    angle = dict(zip(late.name, late.position, strict=True))["wheel_left_joint"]
+    assert abs(angle) > abs(moved) / 0.15 * 0.8, (angle, moved)
 
 
 def test_angular_z_turns_it_counter_clockwise(robot) -> None:  # type: ignore[no-untyped-def]
@@ -170,6 +173,17 @@ def test_teleop_in_a_second_terminal_drives_the_robot(robot) -> None:  # type: i
     finally:
         teleop.close(force=True)
     assert teleop.exitstatus == 0
+
+
+def test_the_seeds_joint_state_publisher_takes_over_joint_states(robot) -> None:  # type: ignore[no-untyped-def]
+    gzserver = robot.process("gzserver")
+    with second_terminal(robot, "joint_state_publisher", "joint_state_publisher"):
+        gzserver.wait_output("another node publishes /joint_states", timeout=30)
+        # From now on only joint_state_publisher's zeros arrive, as in the seed's Gazebo flow.
+        states = robot.expect_topic("/joint_states", min_messages=6, within=20)
+        assert not any(any(m.position) for m in states[-3:]), [m.position for m in states]
+    gzserver.wait_output("no other node publishes /joint_states", timeout=30)
+    robot.expect_topic("/joint_states", within=20, where=lambda m: any(m.position))
 
 
 def test_ctrl_c_leaves_nothing_running(robot) -> None:  # type: ignore[no-untyped-def]

@@ -12,7 +12,7 @@ def test_gazebo_and_rviz_launch_spawns_and_runs_the_robot(launch: Any) -> None:
     assert handle.process("spawn_entity.py").wait_exit(timeout=10) == 0
     odom = handle.expect_topic("/odom", within=20)[-1]
     assert (odom.header.frame_id, odom.child_frame_id) == ("odom", "base")
-    scan = handle.expect_topic("/gazebo_lidar/out", within=20)[-1]
+    scan = handle.expect_topic("/scan", within=20)[-1]
     assert len(scan.ranges) == 360 and all(math.isinf(r) for r in scan.ranges)  # empty world
     assert handle.expect_topic("/clock", within=10)
     handle.process("gzserver").wait_output("started plugin node 'gazebo_base_controller'", 5)

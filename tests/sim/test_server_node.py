@@ -20,7 +20,7 @@ import pytest
 from launchkit.ros.msgs.geometry_msgs.msg import Twist, Vector3
 from launchkit.ros.msgs.nav_msgs.msg import Odometry
 from launchkit.ros.msgs.rosgraph_msgs.msg import Clock
-from launchkit.ros.msgs.sensor_msgs.msg import CameraInfo, Image, LaserScan
+from launchkit.ros.msgs.sensor_msgs.msg import CameraInfo, Image, JointState, LaserScan
 
 from launchkit.packages import PackageIndex
 from launchkit.ros import Node, QoSProfile, spin_once
@@ -185,12 +185,20 @@ def test_spawned_robot_publishes_drives_and_turns(probe: Node) -> None:
     probe.create_subscription(
         Odometry, "/gazebo/my_robot/ground_truth", lambda m: truth.__setitem__(stamp(m), m), 200
     )
-    probe.create_subscription(LaserScan, "/gazebo_lidar/out", scans.append, QoSProfile(depth=5))
+    # The seed's lidar block leaves ~/out alone: gazebo_ros's /gazebo_lidar/out, launchkit's /scan.
+    probe.create_subscription(LaserScan, "/scan", scans.append, QoSProfile(depth=5))
     probe.create_subscription(Clock, "/clock", clocks.append, 10)
+    joints: list[Any] = []
+    probe.create_subscription(JointState, "/joint_states", joints.append, 50)
     cmd = probe.create_publisher(Twist, "/cmd_vel", 1)
     spin_until(
-        probe, lambda: bool(odom and scans and clocks), 20, "/odom, /gazebo_lidar/out, /clock"
+        probe,
+        lambda: bool(odom and scans and clocks and joints),
+        20,
+        "/odom, /scan, /clock, /joint_states",
     )
+    assert set(joints[-1].name) == {"wheel_left_joint", "wheel_right_joint", "caster_joint"}
+    wheels_before = dict(zip(joints[-1].name, joints[-1].position, strict=True))
 
     scan = scans[-1]
     assert (scan.header.frame_id, len(scan.ranges)) == ("lidar", 360)
@@ -218,6 +226,10 @@ def test_spawned_robot_publishes_drives_and_turns(probe: Node) -> None:
     assert (same.x, same.y) == pytest.approx(
         (moved.pose.pose.position.x, moved.pose.pose.position.y), abs=1e-9
     )
+    # /joint_states is PyBullet's: 0.82 m on 0.15 m wheels is more than 5 rad of rotation.
+    wheels_after = dict(zip(joints[-1].name, joints[-1].position, strict=True))
+    for wheel in ("wheel_left_joint", "wheel_right_joint"):
+        assert abs(wheels_after[wheel] - wheels_before[wheel]) > 4.0, (wheel, wheels_after)
 
     # Turn: +1 rad/s is counter-clockwise.
     cmd.publish(Twist(angular=Vector3(z=1.0)))

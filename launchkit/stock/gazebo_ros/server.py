@@ -6,7 +6,11 @@ publishes ``/clock``; with the factory plugin it serves ``/spawn_entity`` and ``
 Spawned models get their sensors published and their diff drive run as a child node
 (:mod:`plugin_processes`). Parameters: ``real_time_factor`` (1.0; 0 = as fast as possible),
 ``publish_rate`` (/clock Hz, 10), ``time_step`` (s, 1/240), ``state_rate`` (Hz of the joint states
-the diff drive reads, 120), ``gui`` (false), ``egl`` (false), ``world``.
+the diff drive reads, 120), ``gui`` (false), ``egl`` (false), ``world``, and two choices where
+launchkit differs from gazebo_ros for the seed's sake: ``ray_sensor_topic`` (``scan``: where a ray
+sensor publishes unless its ``<ros>`` block remaps ``~/out``; ``~/out`` is gazebo_ros's choice)
+and ``joint_state_rate`` (50 Hz of ``/joint_states`` for a model without a joint state plugin;
+0 for none, as in Gazebo; see :mod:`sim.joint_states`).
 """
 
 from __future__ import annotations
@@ -25,9 +29,10 @@ from launchkit.stock.gazebo_ros import messages
 from launchkit.stock.gazebo_ros._shutdown import shutdown_within
 from launchkit.stock.gazebo_ros.plugin_processes import PluginProcesses
 from launchkit.stock.gazebo_ros.sim.engine import Entity, Simulation, SimulationError
+from launchkit.stock.gazebo_ros.sim.joint_states import JointStateOutput
 from launchkit.stock.gazebo_ros.sim.model import ModelError
 from launchkit.stock.gazebo_ros.sim.pacing import Pacer
-from launchkit.stock.gazebo_ros.sim.plugins import EntityPlugins, load_plugins
+from launchkit.stock.gazebo_ros.sim.plugins import EntityPlugins, PluginDefaults, load_plugins
 from launchkit.stock.gazebo_ros.sim.sensors import CameraConfig, RateGate
 from launchkit.stock.gazebo_ros.sim.world import load_world, resolve_world
 
@@ -100,6 +105,7 @@ class _Runtime:
     state_pub: Any
     truth_pub: Any
     sensor_pubs: dict[str, Any] = field(default_factory=dict)
+    joint_state_pubs: list[tuple[JointStateOutput, Any, RateGate]] = field(default_factory=list)
 
 
 class SimServer:
@@ -117,6 +123,10 @@ class SimServer:
         gui = bool(p.declare_parameter("gui", options.gui).value)
         egl = bool(p.declare_parameter("egl", False).value)
         world_name = str(p.declare_parameter("world", options.world).value) or "empty"
+        self.plugin_defaults = PluginDefaults(
+            ray_topic=str(p.declare_parameter("ray_sensor_topic", "scan").value) or "~/out",
+            joint_state_rate=float(p.declare_parameter("joint_state_rate", 50.0).value),
+        )
         p.declare_parameter("verbose", options.verbose)
         if bool(p.declare_parameter("pause", options.paused).value):
             self.logger.warn("starting paused is not supported; the world runs")
@@ -134,6 +144,8 @@ class SimServer:
         self.state_rate = state_rate
         self.state_gates: dict[str, RateGate] = {}
         self.runtimes: dict[str, _Runtime] = {}
+        #: Topics where the implicit joint state streams pause: another node publishes there.
+        self.yielded_topics: set[str] = set()
         self.children = PluginProcesses(self.logger.info)
         self.sensor_qos = ros.QoSProfile(depth=5, reliability=ros.ReliabilityPolicy.RELIABLE)
         self.clock_pub = None
@@ -169,7 +181,7 @@ class SimServer:
                 name, xml, (pose.position.x, pose.position.y, pose.position.z, roll, pitch, yaw)
             )
             try:
-                plugins = load_plugins(self.sim, entity, self.logger.info)
+                plugins = load_plugins(self.sim, entity, self.logger.info, self.plugin_defaults)
             except SimulationError:
                 self.sim.delete(name)
                 raise
@@ -227,6 +239,14 @@ class SimServer:
             runtime.sensor_pubs[c.info_topic] = p.create_publisher(
                 _msg("sensor_msgs", "CameraInfo"), c.info_topic, self.sensor_qos
             )
+        for output in plugins.joint_states:
+            publisher = p.create_publisher(joint_state, output.topic, 10)
+            runtime.joint_state_pubs.append((output, publisher, RateGate(output.rate)))
+            if output.implicit:
+                self.logger.info(
+                    f"'{name}' has no joint state plugin: publishing its joints on {output.topic} "
+                    f"at {output.rate:g} Hz while no other node does (joint_state_rate:=0 for none)"
+                )
         self.runtimes[name] = runtime
         self.state_gates[name] = RateGate(self.state_rate)
         for plugin, params in plugins.diff_drives:
@@ -255,6 +275,11 @@ class SimServer:
         for name, runtime in self.runtimes.items():
             if self.state_gates[name].due(now):
                 self._publish_state(now, runtime)
+            for output, publisher, gate in runtime.joint_state_pubs:
+                if output.implicit and output.topic in self.yielded_topics:
+                    continue
+                if gate.due(now):
+                    publisher.publish(self._joint_state(now, runtime.entity, output.joints))
             for lidar, ranges in runtime.plugins.poll_lidars(now):
                 scan = messages.laser_scan(lidar.config, now, ranges)
                 runtime.sensor_pubs[lidar.config.topic].publish(scan)
@@ -270,17 +295,40 @@ class SimServer:
         runtime.truth_pub.publish(
             messages.odometry(_ground_truth(now, runtime.entity.spec.root_link, base))
         )
-        states = self.sim.joint_states(runtime.entity)
-        names = list(states)
-        runtime.state_pub.publish(
-            messages.joint_state(
-                now,
-                names,
-                [states[n][0] for n in names],
-                [states[n][1] for n in names],
-                [states[n][2] for n in names],
-            )
+        runtime.state_pub.publish(self._joint_state(now, runtime.entity))
+
+    def _joint_state(self, now: float, entity: Entity, joints: tuple[str, ...] = ()) -> Any:
+        """A ``JointState`` of ``joints`` (all movable joints when empty) at ``now``."""
+        states = self.sim.joint_states(entity)
+        names = list(joints) or list(states)
+        return messages.joint_state(
+            now,
+            names,
+            [states[n][0] for n in names],
+            [states[n][1] for n in names],
+            [states[n][2] for n in names],
         )
+
+    def _yield_joint_state_topics(self) -> None:
+        """Pause the implicit joint state streams on topics another node publishes, and resume
+        them when it is gone."""
+        ours: dict[str, int] = {}
+        implicit: set[str] = set()
+        for runtime in self.runtimes.values():
+            for output, _, _ in runtime.joint_state_pubs:
+                ours[output.topic] = ours.get(output.topic, 0) + 1
+                if output.implicit:
+                    implicit.add(output.topic)
+        for topic in implicit:
+            others = self.node.count_publishers(topic) - ours[topic]
+            if others > 0 and topic not in self.yielded_topics:
+                self.yielded_topics.add(topic)
+                self.logger.info(
+                    f"another node publishes {topic}; the simulator stops publishing there"
+                )
+            elif others <= 0 and topic in self.yielded_topics:
+                self.yielded_topics.discard(topic)
+                self.logger.info(f"no other node publishes {topic}; the simulator publishes it")
 
     def run(self) -> None:
         """Step, publish and pace until shutdown."""
@@ -297,6 +345,7 @@ class SimServer:
                 self.ros.spin_once(self.node, timeout_sec=0.0)
             if self.sim.steps % 240 == 0:
                 self.children.supervise()
+                self._yield_joint_state_topics()
 
     def close(self) -> None:
         """Stop the children and the physics."""

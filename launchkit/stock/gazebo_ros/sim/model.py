@@ -37,6 +37,8 @@ class PluginSpec:
     name: str
     tags: dict[str, str]
     ros: RosOptions = RosOptions()
+    #: Every value of each tag, in order, for the tags a plugin may repeat (``<joint_name>``).
+    repeated: dict[str, tuple[str, ...]] = field(default_factory=dict)
 
     @property
     def library(self) -> str:
@@ -157,11 +159,14 @@ def _friction(root: ET.Element) -> dict[str, float]:
 
 def _plugin(element: ET.Element) -> PluginSpec:
     tags: dict[str, str] = {}
+    repeated: dict[str, tuple[str, ...]] = {}
     for child in element:
         if child.tag == "ros":
             continue
+        text = (child.text or "").strip()
         # Repeated tags (several wheel pairs) keep the first, the pair launchkit drives.
-        tags.setdefault(child.tag, (child.text or "").strip())
+        tags.setdefault(child.tag, text)
+        repeated[child.tag] = (*repeated.get(child.tag, ()), text)
     ros = element.find("ros")
     options = RosOptions()
     if ros is not None:
@@ -176,7 +181,7 @@ def _plugin(element: ET.Element) -> PluginSpec:
             source, target = text.split(":=", 1)
             remaps.append((source.strip(), target.strip()))
         options = RosOptions((ros.findtext("namespace") or "").strip(), tuple(remaps))
-    return PluginSpec(element.get("filename", ""), element.get("name", ""), tags, options)
+    return PluginSpec(element.get("filename", ""), element.get("name", ""), tags, options, repeated)
 
 
 def _sensor(element: ET.Element, link: str) -> SensorSpec:

@@ -7,7 +7,8 @@ from dataclasses import dataclass, field
 
 from launchkit.stock.gazebo_ros.diff_drive import DiffDriveParams, wheel_geometry_warnings
 from launchkit.stock.gazebo_ros.sim.engine import Entity, Simulation, SimulationError
-from launchkit.stock.gazebo_ros.sim.model import PluginSpec
+from launchkit.stock.gazebo_ros.sim.joint_states import JOINT_STATE_PUBLISHER, JointStateOutput
+from launchkit.stock.gazebo_ros.sim.model import ModelError, PluginSpec
 from launchkit.stock.gazebo_ros.sim.sensors import Camera, CameraConfig, Lidar, LidarConfig
 
 DIFF_DRIVE = "gazebo_ros_diff_drive"
@@ -15,11 +16,23 @@ RAY_SENSOR = "gazebo_ros_ray_sensor"
 CAMERA = "gazebo_ros_camera"
 
 
+@dataclass(frozen=True)
+class PluginDefaults:
+    """The server's choices where a model's blocks say nothing (see :func:`load_plugins`)."""
+
+    #: The topic of a ray sensor whose ``<ros>`` block does not remap ``~/out``.
+    ray_topic: str = "~/out"
+    #: Sim Hz of the ``/joint_states`` of a model without a joint state plugin (0: none).
+    joint_state_rate: float = 0.0
+
+
 @dataclass
 class EntityPlugins:
-    """What runs for one entity: diff drives (configured, run elsewhere), lidars, cameras."""
+    """What runs for one entity: diff drives (configured, run elsewhere), joint state streams,
+    lidars, cameras."""
 
     diff_drives: list[tuple[PluginSpec, DiffDriveParams]] = field(default_factory=list)
+    joint_states: list[JointStateOutput] = field(default_factory=list)
     lidars: list[Lidar] = field(default_factory=list)
     cameras: list[Camera] = field(default_factory=list)
 
@@ -38,11 +51,24 @@ class EntityPlugins:
         return frames
 
 
-def load_plugins(sim: Simulation, entity: Entity, log: Callable[[str], None]) -> EntityPlugins:
+def load_plugins(
+    sim: Simulation,
+    entity: Entity,
+    log: Callable[[str], None],
+    defaults: PluginDefaults = PluginDefaults(),
+) -> EntityPlugins:
     """Configure ``entity``'s plugins; :class:`SimulationError` on an unusable block."""
     found = EntityPlugins()
     spec = entity.spec
     for plugin in spec.plugins:
+        if plugin.library == JOINT_STATE_PUBLISHER:
+            try:
+                found.joint_states.append(
+                    JointStateOutput.from_plugin(plugin, entity.movable_joints)
+                )
+            except ModelError as exc:
+                raise SimulationError(str(exc)) from None
+            continue
         if plugin.library != DIFF_DRIVE:
             log(f"plugin '{plugin.name}' ({plugin.filename}) is not simulated; ignored")
             continue
@@ -60,7 +86,14 @@ def load_plugins(sim: Simulation, entity: Entity, log: Callable[[str], None]) ->
         libraries = {p.library for p in sensor.plugins}
         try:
             if sensor.type in ("ray", "gpu_ray") and RAY_SENSOR in libraries:
-                config = LidarConfig.from_sensor(sensor)
+                config = LidarConfig.from_sensor(sensor, defaults.ray_topic)
+                gazebo_topic = LidarConfig.from_sensor(sensor).topic
+                if config.topic != gazebo_topic:
+                    log(
+                        f"ray sensor '{sensor.name}': publishing on {config.topic} (gazebo_ros "
+                        f"would use {gazebo_topic}; remap ~/out in the plugin's <ros> block, or "
+                        "set the server's ray_sensor_topic parameter, to choose)"
+                    )
                 if config.output_type != "sensor_msgs/LaserScan":
                     log(
                         f"ray sensor '{sensor.name}': {config.output_type} not supported; LaserScan"
@@ -74,6 +107,10 @@ def load_plugins(sim: Simulation, entity: Entity, log: Callable[[str], None]) ->
             raise SimulationError(str(exc)) from None
         if sensor.link not in entity.links:
             raise SimulationError(f"sensor '{sensor.name}' refers to unknown link '{sensor.link}'")
+    if not found.joint_states and defaults.joint_state_rate > 0 and entity.movable_joints:
+        found.joint_states.append(
+            JointStateOutput.implicit_for(entity.movable_joints, defaults.joint_state_rate)
+        )
     return found
 
 

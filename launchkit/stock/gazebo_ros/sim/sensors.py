@@ -68,11 +68,14 @@ class LidarConfig:
         return (self.max_angle - self.min_angle) / max(self.samples - 1, 1)
 
     @classmethod
-    def from_sensor(cls, spec: SensorSpec) -> LidarConfig:
-        """Read a ray sensor; the topic is the plugin's ``~/out`` unless remapped."""
+    def from_sensor(cls, spec: SensorSpec, default_topic: str = "~/out") -> LidarConfig:
+        """Read a ray sensor; the topic is the plugin's ``~/out`` after its remappings, and
+        ``default_topic`` when they leave ``~/out`` alone (gazebo_ros keeps ``~/out``)."""
         plugin = spec.plugins[0] if spec.plugins else None
         node = plugin.name if plugin else spec.name
         topic = plugin.ros.remapped("~/out") if plugin else "~/out"
+        if topic == "~/out":
+            topic = default_topic
         namespace = plugin.ros.namespace.strip("/") if plugin else ""
         topic = _resolve(topic, node, namespace)
         samples = int(spec.find_float("ray/scan/horizontal/samples", 640))
