@@ -29,6 +29,8 @@ import pytest
 from launchkit.ros.msgs.geometry_msgs.msg import Twist, Vector3
 
 import launchkit.ros as ros
+from launchkit.ros.msgs import deserialize
+from tests.stock.foxglove_client import receive_topics
 
 SCAN = "/scan"
 
@@ -110,7 +112,13 @@ def test_the_robot_spawns_and_its_topics_flow(robot) -> None:  # type: ignore[no
     assert {t.child_frame_id for t in static.transforms} >= {"lidar", "camera"}
     (joints,) = robot.expect_topic("/joint_states", within=30)
     assert set(joints.name) == {"wheel_left_joint", "wheel_right_joint", "caster_joint"}
-    robot.expect_topic("/tf", within=30, where=lambda m: len(m.transforms) > 0)
+    # robot_state_publisher turns the simulator's joint states into the wheels' transforms.
+    (wheels,) = robot.expect_topic(
+        "/tf",
+        within=30,
+        where=lambda m: "wheel_left_link" in {t.child_frame_id for t in m.transforms},
+    )
+    assert {t.child_frame_id for t in wheels.transforms} >= {"wheel_right_link", "caster"}
     (odom,) = robot.expect_topic("/odom", within=30)
     assert (odom.header.frame_id, odom.child_frame_id) == ("odom", "base")
     (scan,) = robot.expect_topic(SCAN, within=30)
@@ -217,7 +225,17 @@ def test_the_default_launch_also_serves_the_viewer(launch) -> None:  # type: ign
         ready_timeout=60,
     )
     handle.process("rviz2").wait_output(f"ws://127.0.0.1:{port}", timeout=30)
-    with socket.create_connection(("127.0.0.1", port), timeout=10):
-        pass  # the viewer's WebSocket server accepts connections
     handle.expect_topic("/odom", within=30)
+    # What a Foxglove viewer gets from the running robot: the model, its transforms, the scan.
+    client = receive_topics(f"ws://127.0.0.1:{port}", ["/robot_description", "/tf", "/scan"])
+    description = deserialize(client.received["/robot_description"][0], "std_msgs/msg/String")
+    assert "three_wheeled_robot" in description.data
+    frames = {
+        t.child_frame_id
+        for raw in client.received["/tf"]
+        for t in deserialize(raw, "tf2_msgs/msg/TFMessage").transforms
+    }
+    assert frames & {"base", "wheel_left_link", "wheel_right_link"}, frames
+    scan = deserialize(client.received["/scan"][0], "sensor_msgs/msg/LaserScan")
+    assert len(scan.ranges) == 360 and scan.header.frame_id == "lidar"
     handle.stop().assert_exit_codes({"spawn_entity.py": 0, "*": {0, -2}})
