@@ -249,6 +249,7 @@ class SimServer:
                 )
         self.runtimes[name] = runtime
         self.state_gates[name] = RateGate(self.state_rate)
+        self._yield_joint_state_topics()  # joint_state_publisher may be running already
         for plugin, params in plugins.diff_drives:
             self.children.start_diff_drive(name, plugin, params)
 
