@@ -1,9 +1,19 @@
-"""Seed 001's launch file, as written, brings the simulated robot up headless."""
+"""Seed 001's launch file, as written, brings the simulated robot up headless; the diff drive
+runs as a process of the launch (started at gzserver's request), not as gzserver's own child."""
 
 from __future__ import annotations
 
 import math
+import os
+import re
+import signal
+import subprocess
+import sys
 from typing import Any
+
+from launchkit.testing import in_order
+
+DRIVING = "driving 'my_robot'"  # the diff drive's first log line
 
 
 def test_gazebo_and_rviz_launch_spawns_and_runs_the_robot(launch: Any) -> None:
@@ -17,5 +27,36 @@ def test_gazebo_and_rviz_launch_spawns_and_runs_the_robot(launch: Any) -> None:
     assert handle.expect_topic("/clock", within=10)
     handle.process("gzserver").wait_output("started plugin node 'gazebo_base_controller'", 5)
     handle.process("robot_state_publisher").wait_output("publishing robot", 20)
+
+    # The diff drive is a process of the launch: its own output prefix, not gzserver's ...
+    controller = handle.process("gazebo_base_controller")
+    controller.wait_output(DRIVING, 20)
+    screen = handle.launcher_log.read_text()
+    assert re.search(rf"^\[gazebo_base_controller-\d+\] .*{DRIVING}", screen, re.MULTILINE)
+    assert not any(DRIVING in line for line in handle.process("gzserver").output)
+    # ... a ROS node of the launch's network ...
+    nodes = subprocess.run(
+        [sys.executable, "-m", "launchkit", "node", "list"],
+        env={**os.environ, **handle.ros_env},
+        capture_output=True,
+        text=True,
+        timeout=30,
+        check=True,
+    )
+    assert "/gazebo_base_controller" in nodes.stdout.split()
+    # ... and the launcher restarts it when it is killed (the survivor sweep of stop() then
+    # covers both incarnations).
+    first = controller.pid
+    os.kill(first, signal.SIGKILL)
+    controller.wait_output(in_order(DRIVING, DRIVING), 30)
+    assert controller.pid != first
+
     result = handle.stop()
-    result.assert_exit_codes({"gzserver": 0, "spawn_entity.py": 0, "robot_state_publisher": 0})
+    result.assert_exit_codes(
+        {
+            "gzserver": 0,
+            "spawn_entity.py": 0,
+            "robot_state_publisher": 0,
+            "gazebo_base_controller": {0, -2},
+        }
+    )
