@@ -67,13 +67,23 @@ class ChildRequests:
     """The listening socket, its connections, and what each connection started."""
 
     def __init__(self, host: ChildHost, selector: selectors.BaseSelector) -> None:
+        """Listen in a new private folder; ``OSError`` where Unix seqpacket sockets are missing."""
         self._host = host
         self._selector = selector
-        self._folder = tempfile.mkdtemp(prefix="launchkit-")  # mode 0700
-        self.path = os.path.join(self._folder, "children.sock")
-        self._listener = socket.socket(socket.AF_UNIX, socket.SOCK_SEQPACKET)
-        self._listener.bind(self.path)
-        self._listener.listen(16)
+        self.folder = tempfile.mkdtemp(prefix="launchkit-")  # mode 0700
+        self.path = os.path.join(self.folder, "children.sock")
+        try:
+            self._listener = socket.socket(socket.AF_UNIX, socket.SOCK_SEQPACKET)
+        except OSError:
+            shutil.rmtree(self.folder, ignore_errors=True)
+            raise
+        try:
+            self._listener.bind(self.path)
+            self._listener.listen(16)
+        except OSError:
+            self._listener.close()
+            shutil.rmtree(self.folder, ignore_errors=True)
+            raise
         self._listener.setblocking(False)
         self._connections: dict[int, _Connection] = {}
         selector.register(self._listener, selectors.EVENT_READ, self._accept)
@@ -88,7 +98,7 @@ class ChildRequests:
             self._forget(connection)
         self._selector.unregister(self._listener)
         self._listener.close()
-        shutil.rmtree(self._folder, ignore_errors=True)
+        shutil.rmtree(self.folder, ignore_errors=True)
 
     # -- on the supervisor's loop ------------------------------------------------------------
 

@@ -105,7 +105,7 @@ class Supervisor:
         self._context = context
         previous = self._install_signals()
         try:
-            self._requests = ChildRequests(self, self._selector)
+            self._open_requests()
             self._first_pass(description, context)
             self.hooks.launch_ready()
             self._loop()
@@ -115,6 +115,19 @@ class Supervisor:
                 signal.signal(signum, handler)
             signal.set_wakeup_fd(-1)
         return self.exit_code
+
+    def _open_requests(self) -> None:
+        try:
+            self._requests = ChildRequests(self, self._selector)
+        except OSError as error:
+            self.log(
+                "WARNING",
+                "launch",
+                f"no child-request socket ({error}): processes that ask "
+                "the launcher to start processes will run them themselves",
+            )
+            return
+        self._guard.remove_on_death(self._requests.folder)
 
     def _first_pass(self, description: LaunchDescription, context: LaunchContext) -> None:
         self._pending = []

@@ -12,6 +12,7 @@ from __future__ import annotations
 import os
 import signal
 import sys
+import time
 from pathlib import Path
 
 import pytest
@@ -36,8 +37,10 @@ print("owner asked for", kid.label, flush=True)
 print("owner done", flush=True)
 time.sleep(300)
 """
-BAD_REQUESTS_THEN_STOP = """\
-print("socket", os.environ["LAUNCHKIT_SUPERVISOR_SOCKET"], flush=True)
+PRINT_SOCKET = 'print("socket", os.environ["LAUNCHKIT_SUPERVISOR_SOCKET"], flush=True)\n'
+BAD_REQUESTS_THEN_STOP = (
+    PRINT_SOCKET
+    + """\
 bad = [
     {"op": "reboot"},
     {"op": "start", "name": "x"},
@@ -59,6 +62,7 @@ for stopped in (kid, client.start("once", [sys.executable, "-c", KID])):
 other = client.start("other", [sys.executable, "-c", KID])
 print("owner asked for", other.label, flush=True)
 """
+)
 
 
 def owner(tmp_path: Path, kid: str = KID, then: str = "") -> str:
@@ -117,13 +121,18 @@ def test_ctrl_c_stops_requested_children(run, tmp_path) -> None:  # type: ignore
 
 
 def test_launcher_killed_with_sigkill_leaves_no_requested_child(run, tmp_path) -> None:  # type: ignore[no-untyped-def]
-    launcher = run(owner(tmp_path, kid=STUBBORN_KID))
+    launcher = run(owner(tmp_path, kid=STUBBORN_KID, then=PRINT_SOCKET))
     launcher.wait_line("[kid-2] kid up")
+    folder = Path(launcher.wait_line("[owner-1] socket ").split()[-1]).parent
     pids = list(launcher.pids.values())
     assert len(pids) == 2 and all(alive(pid) for pid in pids)
     os.kill(launcher.proc.pid, signal.SIGKILL)
     launcher.proc.wait(10)
     wait_gone(pids)  # the orphan guard covers the requested child's process group too
+    deadline = time.monotonic() + 10
+    while folder.exists():  # ... and removes the socket's folder after the kills
+        assert time.monotonic() < deadline, f"{folder} was left behind"
+        time.sleep(0.02)
 
 
 def test_bad_requests_are_refused_and_a_stop_request_stops_for_good(run, tmp_path) -> None:  # type: ignore[no-untyped-def]
