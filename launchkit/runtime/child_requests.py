@@ -70,6 +70,8 @@ class ChildRequests:
         """Listen in a new private folder; ``OSError`` where Unix seqpacket sockets are missing."""
         self._host = host
         self._selector = selector
+        if not hasattr(socket, "SO_PEERCRED"):
+            raise OSError("this system cannot tell who connects to a Unix socket (SO_PEERCRED)")
         self.folder = tempfile.mkdtemp(prefix="launchkit-")  # mode 0700
         self.path = os.path.join(self.folder, "children.sock")
         try:
@@ -108,8 +110,10 @@ class ChildRequests:
         except (BlockingIOError, InterruptedError):
             return
         sock.setblocking(False)
-        pid = _UCRED.unpack(sock.getsockopt(socket.SOL_SOCKET, socket.SO_PEERCRED, _UCRED.size))[0]
+        pid = 0
         try:
+            credentials = sock.getsockopt(socket.SOL_SOCKET, socket.SO_PEERCRED, _UCRED.size)
+            pid = _UCRED.unpack(credentials)[0]
             owner = self._host.owner_of(os.getsid(pid))
         except OSError:
             owner = None  # it is gone already
