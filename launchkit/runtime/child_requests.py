@@ -107,7 +107,7 @@ class ChildRequests:
     def _accept(self) -> None:
         try:
             sock, _ = self._listener.accept()
-        except (BlockingIOError, InterruptedError):
+        except OSError:  # nothing to accept after all, or the peer gave up already
             return
         sock.setblocking(False)
         pid = 0
@@ -137,6 +137,9 @@ class ChildRequests:
             reply = {"ok": True, **self._serve(connection, _parse(data))}
         except RequestError as error:
             reply = {"ok": False, "error": str(error)}
+        except Exception as error:  # a request must never take the launch down
+            self._host.log("WARNING", "launch", f"child request failed: {error!r}")
+            reply = {"ok": False, "error": f"internal error: {error!r}"}
         try:
             connection.sock.send(json.dumps(reply).encode())
         except OSError:
@@ -207,14 +210,18 @@ def _spec(request: dict[str, Any], owner: ManagedProcess) -> ProcessSpec:
     cmd = request.get("cmd")
     if not isinstance(cmd, list) or not cmd or not all(isinstance(w, str) for w in cmd):
         raise RequestError("cmd must be a non-empty list of strings (the argv)")
+    if any("\0" in word for word in cmd):
+        raise RequestError("cmd must not contain NUL characters")
     env = request.get("env", {})
     if not isinstance(env, dict) or not all(
         isinstance(k, str) and isinstance(v, str) for k, v in env.items()
     ):
         raise RequestError("env must map strings to strings")
+    if any("\0" in k or "=" in k or not k or "\0" in v for k, v in env.items()):
+        raise RequestError("env names must be non-empty, without '=' or NUL; values without NUL")
     cwd = request.get("cwd", owner.spec.cwd)
-    if cwd is not None and not isinstance(cwd, str):
-        raise RequestError("cwd must be a string")
+    if cwd is not None and (not isinstance(cwd, str) or "\0" in cwd):
+        raise RequestError("cwd must be a string (without NUL)")
     respawn = request.get("respawn", False)
     if not isinstance(respawn, bool):
         raise RequestError("respawn must be true or false")

@@ -47,6 +47,7 @@ bad = [
     {"op": "start", "name": "x", "cmd": ["no-such-program-xyz"]},
     {"op": "start", "name": "x", "cmd": ["true"], "colour": "red"},
     {"op": "stop", "id": 99},
+    {"op": "start", "name": "x", "cmd": ["a\\0b"]},
 ]
 for request in bad:
     try:
@@ -144,7 +145,8 @@ def test_bad_requests_are_refused_and_a_stop_request_stops_for_good(run, tmp_pat
     assert refusals[2] == "program 'no-such-program-xyz' of process 'x' not found"
     assert refusals[3] == "unknown field(s) colour in a start request"
     assert refusals[4] == "no process 99 was started by this connection"
-    assert '"ok": false' in refusals[5] and "not JSON" in refusals[5]
+    assert refusals[5] == "cmd must not contain NUL characters"
+    assert '"ok": false' in refusals[6] and "not JSON" in refusals[6]
     # stopped on request: not respawned, although it was started with respawn
     # (a Python child stopped while it starts up may exit 1 from its KeyboardInterrupt)
     assert "[INFO] [kid-2]: sending signal 'SIGINT' to process[kid-2]" in launcher.text
