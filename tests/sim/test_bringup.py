@@ -23,7 +23,7 @@ def launchkit_cli(handle: Any, *args: str) -> subprocess.CompletedProcess[str]:
         env={**os.environ, **handle.ros_env},
         capture_output=True,
         text=True,
-        timeout=30,
+        timeout=60,
         check=True,
     )
 
@@ -65,6 +65,8 @@ def test_gazebo_and_rviz_launch_spawns_and_runs_the_robot(launch: Any) -> None:
         handle,
         "service",
         "call",
+        "--timeout",
+        "30",
         "/delete_entity",
         "gazebo_msgs/srv/DeleteEntity",
         "{name: my_robot}",
