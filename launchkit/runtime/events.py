@@ -5,6 +5,7 @@ The launcher writes one JSON object a line on a Unix stream socket it inherited 
     {"event": "started", "process": "talker-1", "name": "talker", "node": "chatter",
      "pid": 4242, "cmd": [...], "respawn": false, "sigterm_timeout": 5.0, "sigkill_timeout": 5.0}
     {"event": "output", "process": "talker-1", "stream": "stdout", "text": "hello 1"}
+    {"event": "stopping", "process": "worker-4"}  one process stopped on request (not a shutdown)
     {"event": "exited", "process": "talker-1", "pid": 4242, "returncode": 0}
     {"event": "ready"}                          the first pass is done
     {"event": "failed", "message": "f.xml:3:5: error: ..."}   before ready; the launcher exits 2
@@ -81,6 +82,10 @@ class EventWriter(SupervisorHooks):
     def process_output(self, process: ManagedProcess, stream: str, line: str) -> None:
         """See :class:`SupervisorHooks`."""
         self._send({"event": "output", "process": process.label, "stream": stream, "text": line})
+
+    def process_stopping(self, process: ManagedProcess) -> None:
+        """See :class:`SupervisorHooks`."""
+        self._send({"event": "stopping", "process": process.label})
 
     def process_exited(self, process: ManagedProcess, returncode: int) -> None:
         """See :class:`SupervisorHooks`."""

@@ -27,6 +27,10 @@ class SupervisorHooks:
     def process_output(self, process: ManagedProcess, stream: str, line: str) -> None:
         """``process`` wrote ``line`` on ``stream`` (``stdout`` or ``stderr``)."""
 
+    def process_stopping(self, process: ManagedProcess) -> None:
+        """``process`` alone is being stopped on request (the launch goes on); its exit that
+        follows is expected."""
+
     def process_exited(self, process: ManagedProcess, returncode: int) -> None:
         """``process`` exited (negative ``returncode``: killed by that signal)."""
 

@@ -4,7 +4,8 @@
 SIGKILLed. So the launcher starts one tiny ``sh`` in its own session, tells it each child's
 process group over a pipe, and kills it on a clean exit. If the launcher dies any other way the
 pipe closes, ``read`` returns, and the watchdog SIGKILLs every group it was told about,
-grandchildren of ``sh -c`` included.
+grandchildren of ``sh -c`` included, and removes the folder it was told about (that of the
+launcher's child-request socket).
 """
 
 from __future__ import annotations
@@ -14,9 +15,10 @@ import signal
 import subprocess
 
 _SCRIPT = (
-    'trap "" INT TERM HUP QUIT; '
-    'while read -r g; do set -- "$@" "$g"; done; '
-    'for g in "$@"; do kill -9 "-$g" 2>/dev/null; done'
+    'trap "" INT TERM HUP QUIT; d=""; '
+    'while read -r g; do case "$g" in /*) d="$g";; *) set -- "$@" "$g";; esac; done; '
+    'for g in "$@"; do kill -9 "-$g" 2>/dev/null; done; '
+    '[ -z "$d" ] || rm -rf "$d"'
 )
 
 
@@ -28,6 +30,13 @@ class OrphanGuard:
 
     def watch(self, pgid: int) -> None:
         """Add a process group to kill should the launcher die."""
+        self._tell(str(pgid))
+
+    def remove_on_death(self, folder: str) -> None:
+        """The folder (an absolute path) to remove should the launcher die."""
+        self._tell(folder)
+
+    def _tell(self, line: str) -> None:
         if self._process is None:
             self._process = subprocess.Popen(
                 ["/bin/sh", "-c", _SCRIPT],
@@ -39,7 +48,7 @@ class OrphanGuard:
             )
         assert self._process.stdin is not None
         try:
-            self._process.stdin.write(f"{pgid}\n".encode())
+            self._process.stdin.write(f"{line}\n".encode())
             self._process.stdin.flush()
         except OSError:
             pass  # the guard died (someone killed it); the launcher's own cleanup still runs

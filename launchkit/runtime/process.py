@@ -58,6 +58,7 @@ class ManagedProcess:
     signals_sent: list[int] = field(default_factory=list)
     escalation_at: float | None = None
     respawn_at: float | None = None
+    retired: bool = False  # stopped on request (not by a shutdown): never respawned
 
     @property
     def pid(self) -> int | None:

@@ -4,6 +4,10 @@ signals and shuts everything down, in order.
 Everything happens on the main thread in :meth:`Supervisor.run`. Child exits are seen through
 pidfds, output through non-blocking pipes, signals through a wakeup fd, all in one selector, so
 a lifecycle line is printed only after the child's remaining output: lines stay chronological.
+
+Processes of the launch may also ask the supervisor, over the child-request socket it serves on
+the same loop (:mod:`launchkit.runtime.child_requests`), to start processes for them; those are
+supervised exactly like declared ones and stopped when their owner's connection closes.
 """
 
 from __future__ import annotations
@@ -19,6 +23,7 @@ from typing import TYPE_CHECKING
 
 from launchkit.description.process import ProcessSpec
 from launchkit.errors import LaunchFileError, LaunchkitError
+from launchkit.runtime.child_requests import ChildRequests, RequestError
 from launchkit.runtime.hooks import SupervisorHooks
 from launchkit.runtime.orphan_guard import OrphanGuard
 from launchkit.runtime.output import Output
@@ -63,6 +68,7 @@ class Supervisor:
         self._selector = selectors.DefaultSelector()
         self._signal_r, self._signal_w = os.pipe()
         self._needs_polling = False
+        self._requests: ChildRequests | None = None
         self.on_started: Callable[[ManagedProcess], None] | None = None
 
     # -- the Runtime protocol (what actions call) ---------------------------------------------
@@ -99,6 +105,7 @@ class Supervisor:
         self._context = context
         previous = self._install_signals()
         try:
+            self._open_requests()
             self._first_pass(description, context)
             self.hooks.launch_ready()
             self._loop()
@@ -108,6 +115,19 @@ class Supervisor:
                 signal.signal(signum, handler)
             signal.set_wakeup_fd(-1)
         return self.exit_code
+
+    def _open_requests(self) -> None:
+        try:
+            self._requests = ChildRequests(self, self._selector)
+        except OSError as error:
+            self.log(
+                "WARNING",
+                "launch",
+                f"no child-request socket ({error}): processes that ask "
+                "the launcher to start processes will run them themselves",
+            )
+            return
+        self._guard.remove_on_death(self._requests.folder)
 
     def _first_pass(self, description: LaunchDescription, context: LaunchContext) -> None:
         self._pending = []
@@ -198,10 +218,15 @@ class Supervisor:
             except LaunchkitError as error:
                 self.fail(error)
                 return
-        index = len(self.processes) + 1
-        process = ManagedProcess(spec, f"{spec.name}-{index}", index)
+        process = self._managed(spec)
         self.processes.append(process)
         self._spawn(process)
+
+    def _managed(self, spec: ProcessSpec) -> ManagedProcess:
+        if self._requests is not None:
+            spec.env.update(self._requests.environment())
+        index = len(self.processes) + 1
+        return ManagedProcess(spec, f"{spec.name}-{index}", index)
 
     def _spawn(self, process: ManagedProcess) -> None:
         try:
@@ -215,6 +240,9 @@ class Supervisor:
             self.exit_code = self.exit_code or 1
             self.begin_shutdown("a process could not be started", level="ERROR")
             return
+        self._watch(process)
+
+    def _watch(self, process: ManagedProcess) -> None:
         assert process.popen is not None
         self._guard.watch(process.popen.pid)
         self.log("INFO", process.label, f"process started with pid [{process.pid}]")
@@ -269,7 +297,7 @@ class Supervisor:
             self.begin_shutdown(
                 f"process[{process.label}] was required: shutting down launched system"
             )
-        elif process.spec.respawn:
+        elif process.spec.respawn and not process.retired:
             self._maybe_respawn(process)
 
     def _report_exit(self, process: ManagedProcess, code: int, stopping: bool) -> None:
@@ -297,6 +325,41 @@ class Supervisor:
         process.state = State.BACKOFF
         process.respawn_at = self.clock() + process.spec.respawn_delay
         self.log("INFO", process.label, f"respawning in {process.spec.respawn_delay:g} s")
+
+    # -- processes started on request (the ChildHost protocol of child_requests) -------------
+
+    def owner_of(self, pid: int) -> ManagedProcess | None:
+        """The running process of the launch whose pid (and so session) is ``pid``."""
+        return next((p for p in self.processes if p.alive and p.pid == pid), None)
+
+    def start_child(self, spec: ProcessSpec, owner: ManagedProcess) -> ManagedProcess:
+        """Start ``spec`` at ``owner``'s request; :class:`RequestError` if it cannot start
+        (a refused request never stops the launch)."""
+        if self.shutting_down:
+            raise RequestError("the launch is shutting down")
+        try:
+            check_program(spec)
+        except LaunchkitError as error:
+            raise RequestError(error.message) from None
+        process = self._managed(spec)
+        try:
+            process.spawn()
+        except OSError as error:
+            raise RequestError(f"could not start '{spec.cmd[0]}': {error.strerror}") from None
+        self.processes.append(process)
+        self.log("INFO", process.label, f"started at the request of {owner.label}")
+        self._watch(process)
+        return process
+
+    def stop_child(self, process: ManagedProcess) -> None:
+        """Stop a process started on request, as a shutdown would, and never respawn it."""
+        process.retired = True
+        if process.state is State.BACKOFF:
+            process.state = State.EXITED
+            process.respawn_at = None
+        elif process.state is State.RUNNING:
+            self.hooks.process_stopping(process)
+            self._send(process, signal.SIGINT)
 
     # -- shutdown ----------------------------------------------------------------------------
 
@@ -401,6 +464,9 @@ class Supervisor:
             except (ProcessLookupError, PermissionError):
                 pass
         self._guard.dismiss()
+        if self._requests is not None:
+            self._requests.close()
+            self._requests = None
         if self.network is not None:
             self.network.close()
         if self._context is not None:

@@ -33,6 +33,7 @@ class ProcessRecord:
     running: bool = False
     returncode: int | None = None
     exited_while_stopping: bool = False  # the launch was shutting down when it exited
+    stop_requested: bool = False  # the launcher is stopping this process alone
     acknowledged: bool = False  # a wait_exit took note of its exit
     lines: list[OutputLine] = field(default_factory=list)
 
@@ -103,12 +104,19 @@ class LaunchState:
             record.running = True
             record.returncode = None
             record.acknowledged = False
+            record.stop_requested = False
         elif kind == "exited":
             record = self.processes.get(str(event["process"]))
             if record is not None:
                 record.running = False
                 record.returncode = int(event["returncode"])
-                record.exited_while_stopping = self.stopping or self.shutdown_reason is not None
+                record.exited_while_stopping = (
+                    self.stopping or self.shutdown_reason is not None or record.stop_requested
+                )
+        elif kind == "stopping":
+            record = self.processes.get(str(event["process"]))
+            if record is not None:
+                record.stop_requested = True
         elif kind == "ready":
             self.ready = True
         elif kind == "failed":

@@ -3,7 +3,8 @@
 Accepts Gazebo's command line (``gazebo --verbose -s libgazebo_ros_init.so -s
 libgazebo_ros_factory.so [WORLD]``) and ROS arguments after ``--ros-args``. With the init plugin it
 publishes ``/clock``; with the factory plugin it serves ``/spawn_entity`` and ``/delete_entity``.
-Spawned models get their sensors published and their diff drive run as a child node
+Spawned models get their sensors published and their diff drive run as a node process of its
+own, started by the launcher under ``launchkit run`` and by the server otherwise
 (:mod:`plugin_processes`). Parameters: ``real_time_factor`` (1.0; 0 = as fast as possible),
 ``publish_rate`` (/clock Hz, 10), ``time_step`` (s, 1/240), ``state_rate`` (Hz of the joint states
 the diff drive reads, 120), ``gui`` (false), ``egl`` (false), ``world``, and two choices where

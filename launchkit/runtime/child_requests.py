@@ -1,0 +1,244 @@
+"""The launcher's child-request socket: processes of a launch ask it to start processes for them.
+
+The supervisor opens a ``SOCK_SEQPACKET`` Unix socket in a private (0700) temporary folder and
+gives its path to every process it starts (``$LAUNCHKIT_SUPERVISOR_SOCKET``). Connections and
+requests are read by the supervisor's own loop, on its thread, like everything else. The
+protocol and the client are in :mod:`launchkit.runtime.supervisor_client`.
+
+A connection belongs to the process of the launch whose session the connecting process is in
+(every process the launcher starts leads its own session); other connections get errors. A
+process started on request inherits its owner's launch environment, working folder, output mode
+and stop timeouts unless the request says otherwise, and is supervised like a declared one.
+When the connection closes (the owner exited, crashed, was restarted or closed the client)
+every process it started is stopped and not respawned, so such a process never outlives its
+owner nor keeps the launch alive. A bad request gets an error reply; it never stops the launch.
+"""
+
+from __future__ import annotations
+
+import json
+import math
+import os
+import selectors
+import shutil
+import socket
+import struct
+import tempfile
+from dataclasses import dataclass, field
+from typing import Any, Protocol
+
+from launchkit.description.process import OUTPUT_MODES, ProcessSpec
+from launchkit.runtime.process import ManagedProcess, State
+from launchkit.runtime.supervisor_client import MAX_PACKET, SOCKET_ENV
+
+_START_KEYS = {"op", "name", "cmd", "env", "cwd", "respawn", "respawn_delay", "output"}
+_UCRED = struct.Struct("3i")  # pid, uid, gid
+
+
+class RequestError(Exception):
+    """A request that cannot be served; its message is the error reply."""
+
+
+class ChildHost(Protocol):
+    """What the requests need from the supervisor."""
+
+    def owner_of(self, pid: int) -> ManagedProcess | None:
+        """The running process of the launch whose session ``pid`` is in."""
+
+    def start_child(self, spec: ProcessSpec, owner: ManagedProcess) -> ManagedProcess:
+        """Start ``spec`` for ``owner`` now; :class:`RequestError` if it cannot be."""
+
+    def stop_child(self, process: ManagedProcess) -> None:
+        """Stop ``process`` (SIGINT, then escalation) and never respawn it."""
+
+    def log(self, level: str, logger: str, message: str) -> None:
+        """A launch line."""
+
+
+@dataclass
+class _Connection:
+    sock: socket.socket
+    owner: ManagedProcess | None
+    peer: int
+    started: dict[int, ManagedProcess] = field(default_factory=dict)
+
+
+class ChildRequests:
+    """The listening socket, its connections, and what each connection started."""
+
+    def __init__(self, host: ChildHost, selector: selectors.BaseSelector) -> None:
+        """Listen in a new private folder; ``OSError`` where Unix seqpacket sockets are missing."""
+        self._host = host
+        self._selector = selector
+        if not hasattr(socket, "SO_PEERCRED"):
+            raise OSError("this system cannot tell who connects to a Unix socket (SO_PEERCRED)")
+        self.folder = tempfile.mkdtemp(prefix="launchkit-")  # mode 0700
+        self.path = os.path.join(self.folder, "children.sock")
+        try:
+            self._listener = socket.socket(socket.AF_UNIX, socket.SOCK_SEQPACKET)
+        except OSError:
+            shutil.rmtree(self.folder, ignore_errors=True)
+            raise
+        try:
+            self._listener.bind(self.path)
+            self._listener.listen(16)
+        except OSError:
+            self._listener.close()
+            shutil.rmtree(self.folder, ignore_errors=True)
+            raise
+        self._listener.setblocking(False)
+        self._connections: dict[int, _Connection] = {}
+        selector.register(self._listener, selectors.EVENT_READ, self._accept)
+
+    def environment(self) -> dict[str, str]:
+        """What a process needs in its environment to make requests."""
+        return {SOCKET_ENV: self.path}
+
+    def close(self) -> None:
+        """Close every connection and the socket, and remove its folder."""
+        for connection in list(self._connections.values()):
+            self._forget(connection)
+        self._selector.unregister(self._listener)
+        self._listener.close()
+        shutil.rmtree(self.folder, ignore_errors=True)
+
+    # -- on the supervisor's loop ------------------------------------------------------------
+
+    def _accept(self) -> None:
+        try:
+            sock, _ = self._listener.accept()
+        except OSError:  # nothing to accept after all, or the peer gave up already
+            return
+        sock.setblocking(False)
+        pid = 0
+        try:
+            credentials = sock.getsockopt(socket.SOL_SOCKET, socket.SO_PEERCRED, _UCRED.size)
+            pid = _UCRED.unpack(credentials)[0]
+            owner = self._host.owner_of(os.getsid(pid))
+        except OSError:
+            owner = None  # it is gone already
+        connection = _Connection(sock, owner, pid)
+        self._connections[sock.fileno()] = connection
+        self._selector.register(sock, selectors.EVENT_READ, lambda: self._receive(connection))
+
+    def _receive(self, connection: _Connection) -> None:
+        try:
+            data, _, flags, _ = connection.sock.recvmsg(MAX_PACKET)
+        except (BlockingIOError, InterruptedError):
+            return
+        except OSError:
+            data, flags = b"", 0
+        if not data:
+            self._closed(connection)
+            return
+        try:
+            if flags & socket.MSG_TRUNC:
+                raise RequestError(f"request too long (at most {MAX_PACKET} bytes)")
+            reply = {"ok": True, **self._serve(connection, _parse(data))}
+        except RequestError as error:
+            reply = {"ok": False, "error": str(error)}
+        except Exception as error:  # a request must never take the launch down
+            self._host.log("WARNING", "launch", f"child request failed: {error!r}")
+            reply = {"ok": False, "error": f"internal error: {error!r}"}
+        try:
+            connection.sock.send(json.dumps(reply).encode())
+        except OSError:
+            # it does not read its replies (or is gone): treat it as closed
+            self._closed(connection)
+
+    def _serve(self, connection: _Connection, request: dict[str, Any]) -> dict[str, Any]:
+        owner = connection.owner
+        if owner is None:
+            raise RequestError(f"process {connection.peer} is not a process of this launch")
+        op = request.get("op")
+        if op == "start":
+            process = self._host.start_child(_spec(request, owner), owner)
+            connection.started[process.index] = process
+            return {"id": process.index, "pid": process.pid, "label": process.label}
+        if op == "stop":
+            process_id = request.get("id")
+            if set(request) != {"op", "id"} or type(process_id) is not int:
+                raise RequestError('a stop request is {"op": "stop", "id": ID}')
+            stopped = connection.started.get(process_id)
+            if stopped is None:
+                raise RequestError(f"no process {process_id} was started by this connection")
+            self._host.stop_child(stopped)
+            return {}
+        raise RequestError(f"unknown op {op!r} (expected 'start' or 'stop')")
+
+    def _closed(self, connection: _Connection) -> None:
+        self._forget(connection)
+        running = [
+            p
+            for p in connection.started.values()
+            if not p.retired and (p.alive or p.state is State.BACKOFF)
+        ]
+        if running and connection.owner is not None:
+            self._host.log(
+                "INFO",
+                "launch",
+                f"{connection.owner.label} closed its child-request connection: stopping "
+                + ", ".join(p.label for p in running),
+            )
+        for process in running:
+            self._host.stop_child(process)
+
+    def _forget(self, connection: _Connection) -> None:
+        if self._connections.pop(connection.sock.fileno(), None) is not None:
+            self._selector.unregister(connection.sock)
+        connection.sock.close()
+
+
+def _parse(data: bytes) -> dict[str, Any]:
+    try:
+        request = json.loads(data)
+    except (UnicodeDecodeError, json.JSONDecodeError) as error:
+        raise RequestError(f"not JSON: {error}") from None
+    if not isinstance(request, dict):
+        raise RequestError("a request is a JSON object")
+    return request
+
+
+def _spec(request: dict[str, Any], owner: ManagedProcess) -> ProcessSpec:
+    """The process a start request asks for, with its owner's settings as defaults."""
+    unknown = set(request) - _START_KEYS
+    if unknown:
+        raise RequestError(f"unknown field(s) {', '.join(sorted(unknown))} in a start request")
+    name = request.get("name")
+    if not isinstance(name, str) or not name or any(c == "/" or not c.isprintable() for c in name):
+        raise RequestError("name must be a non-empty string without '/' or control characters")
+    cmd = request.get("cmd")
+    if not isinstance(cmd, list) or not cmd or not all(isinstance(w, str) for w in cmd):
+        raise RequestError("cmd must be a non-empty list of strings (the argv)")
+    if any("\0" in word for word in cmd):
+        raise RequestError("cmd must not contain NUL characters")
+    env = request.get("env", {})
+    if not isinstance(env, dict) or not all(
+        isinstance(k, str) and isinstance(v, str) for k, v in env.items()
+    ):
+        raise RequestError("env must map strings to strings")
+    if any("\0" in k or "=" in k or not k or "\0" in v for k, v in env.items()):
+        raise RequestError("env names must be non-empty, without '=' or NUL; values without NUL")
+    cwd = request.get("cwd", owner.spec.cwd)
+    if cwd is not None and (not isinstance(cwd, str) or "\0" in cwd):
+        raise RequestError("cwd must be a string (without NUL)")
+    respawn = request.get("respawn", False)
+    if not isinstance(respawn, bool):
+        raise RequestError("respawn must be true or false")
+    delay = request.get("respawn_delay", 0.0)
+    if type(delay) not in (int, float) or not math.isfinite(delay) or delay < 0:
+        raise RequestError("respawn_delay must be a number of seconds >= 0")
+    output = request.get("output", owner.spec.output)
+    if output not in OUTPUT_MODES:
+        raise RequestError(f"output must be one of {', '.join(OUTPUT_MODES)}")
+    return ProcessSpec(
+        name=name,
+        cmd=list(cmd),
+        env={**owner.spec.env, **env},
+        cwd=cwd,
+        output=output,
+        sigterm_timeout=owner.spec.sigterm_timeout,
+        sigkill_timeout=owner.spec.sigkill_timeout,
+        respawn=respawn,
+        respawn_delay=float(delay),
+    )
