@@ -23,6 +23,7 @@ from pathlib import Path
 
 import yaml
 
+from launchkit.stock.gazebo_ros.camera_node import CameraNodeParams, camera_command
 from launchkit.stock.gazebo_ros.diff_drive import DiffDriveParams
 from launchkit.stock.gazebo_ros.sim.model import PluginSpec
 
@@ -78,6 +79,13 @@ class PluginProcesses:
         """Start the diff drive node of ``plugin`` for ``entity``."""
         params_file = Path(self._tmp.name) / f"{entity}-{plugin.name}.yaml"
         child = Child(plugin.name, diff_drive_command(entity, plugin, params, params_file))
+        self.children.setdefault(entity, []).append(child)
+        self._spawn(child)
+
+    def start_camera(self, entity: str, plugin: PluginSpec, params: CameraNodeParams) -> None:
+        """Start the camera node of ``plugin`` for ``entity`` (it renders in its own process)."""
+        params_file = Path(self._tmp.name) / f"{entity}-{plugin.name}.yaml"
+        child = Child(plugin.name, camera_command(entity, plugin, params, params_file))
         self.children.setdefault(entity, []).append(child)
         self._spawn(child)
 
