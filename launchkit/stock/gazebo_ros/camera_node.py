@@ -12,7 +12,8 @@ the newest state it has (older ones are dropped, never queued), at most at the s
 ``update_rate`` in sim time. The server starts one per camera plugin (:mod:`plugin_processes`);
 it also runs alone: ``launchkit exec gazebo_ros camera --ros-args -p entity:=NAME -p model:=URDF``.
 Parameters: ``entity``, ``model`` (URDF text), ``sensor`` (default: the model's first camera),
-``world`` (name or file, as the server's), ``egl`` (false).
+``world`` (name or file, as the server's), ``egl`` (true: the EGL renderer plugin; TinyRenderer
+if it cannot load).
 """
 
 from __future__ import annotations
@@ -88,7 +89,7 @@ class CameraNode:
         model = str(node.declare_parameter("model", "").value)
         sensor = str(node.declare_parameter("sensor", "").value)
         world = str(node.declare_parameter("world", "empty").value) or "empty"
-        egl = bool(node.declare_parameter("egl", False).value)
+        egl = bool(node.declare_parameter("egl", True).value)
         if not entity or not model:
             raise CameraConfigError("parameters 'entity' and 'model' (URDF text) are required")
         if egl:

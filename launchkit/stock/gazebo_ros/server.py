@@ -7,7 +7,8 @@ Spawned models get their lidars published, and their diff drives and cameras run
 (:mod:`plugin_processes`): the physics loop never renders. Parameters: ``real_time_factor`` (1.0;
 0 = as fast as possible), ``publish_rate`` (/clock Hz, 10), ``time_step`` (s, 1/240),
 ``state_rate`` (Hz of the joint states and ground truth the diff drive and cameras read, 120),
-``gui`` (false), ``egl`` (the cameras render with PyBullet's EGL plugin; false), ``world``.
+``gui`` (false), ``egl`` (the cameras render with PyBullet's EGL plugin, TinyRenderer if it cannot
+load; true), ``world``.
 """
 
 from __future__ import annotations
@@ -117,7 +118,7 @@ class SimServer:
         time_step = float(p.declare_parameter("time_step", 1.0 / 240.0).value)
         state_rate = float(p.declare_parameter("state_rate", 120.0).value)
         gui = bool(p.declare_parameter("gui", options.gui).value)
-        self.egl = bool(p.declare_parameter("egl", False).value)
+        self.egl = bool(p.declare_parameter("egl", True).value)
         world_name = str(p.declare_parameter("world", options.world).value) or "empty"
         p.declare_parameter("verbose", options.verbose)
         if bool(p.declare_parameter("pause", options.paused).value):
