@@ -3,7 +3,8 @@
 Gazebo renders sensors outside its physics thread, and a camera that cannot keep up publishes at a
 lower rate while physics keeps real time. launchkit does the same with one process per camera
 plugin, named after the plugin: it loads the server's world and the entity's model into a PyBullet
-of its own (DIRECT; the EGL renderer plugin when ``egl`` is true), mirrors the entity from the
+of its own (DIRECT; the EGL renderer plugin when ``egl`` is true; built when the image is first
+subscribed, so an unwatched camera holds no renderer), mirrors the entity from the
 server's ground truth and joint states (``/gazebo/{entity}/ground_truth`` and ``.../joint_states``,
 paired by stamp) and publishes ``Image`` and ``CameraInfo`` stamped with that state's sim time.
 
@@ -29,7 +30,7 @@ import yaml
 from launchkit.stock.gazebo_ros import messages
 from launchkit.stock.gazebo_ros._shutdown import shutdown_within
 from launchkit.stock.gazebo_ros.sim.engine import Simulation, SimulationError
-from launchkit.stock.gazebo_ros.sim.model import ModelError, PluginSpec, SensorSpec
+from launchkit.stock.gazebo_ros.sim.model import ModelError, PluginSpec, SensorSpec, parse_model
 from launchkit.stock.gazebo_ros.sim.quiet import silence_c_stdout
 from launchkit.stock.gazebo_ros.sim.sensors import Camera, CameraConfig, RateGate
 from launchkit.stock.gazebo_ros.sim.world import load_world, resolve_world
@@ -92,20 +93,15 @@ class CameraNode:
         egl = bool(node.declare_parameter("egl", True).value)
         if not entity or not model:
             raise CameraConfigError("parameters 'entity' and 'model' (URDF text) are required")
-        if egl:
-            silence_c_stdout()  # the EGL plugin prints a line per frame from C
         try:
-            self.sim = Simulation(load_world(resolve_world(world)), egl=egl, log=self.logger.warn)
-        except ModelError as exc:
+            self.world = load_world(resolve_world(world))
+            self.config = _camera_config(parse_model(model).sensors, sensor)
+        except (ModelError, ValueError) as exc:
             raise CameraConfigError(str(exc)) from None
-        self.sim.log = lambda _message: None  # the server has said it all about this model
-        try:
-            self.entity = self.sim.spawn(entity, model)
-            self.config = _camera_config(self.entity.spec.sensors, sensor)
-        except (SimulationError, ModelError, ValueError, CameraConfigError) as exc:
-            self.sim.close()
-            raise CameraConfigError(str(exc)) from None
-        self.camera = Camera(self.sim, self.entity, self.config)
+        self.entity_name, self.model, self.egl = entity, model, egl
+        # Built when the image is first subscribed: an unwatched camera costs no renderer
+        # (the EGL plugin alone holds about 250 MB).
+        self.camera: Camera | None = None
         c = self.config
         qos = ros.QoSProfile(depth=5, reliability=ros.ReliabilityPolicy.RELIABLE)
         self.image_pub = node.create_publisher(_msg("sensor_msgs", "Image"), c.image_topic, qos)
@@ -116,12 +112,27 @@ class CameraNode:
         self.rendered = -1
         self.state_subs: list[Any] = []
         self.received = False
-        self.entity_name = entity
-        renderer = "EGL" if self.sim.egl else "TinyRenderer"
         self.logger.info(
             f"camera '{c.sensor}' of '{entity}': {c.width}x{c.height} {c.encoding} at "
-            f"{c.update_rate:g} Hz ({renderer}) on '{c.image_topic}', rendered while subscribed"
+            f"{c.update_rate:g} Hz on '{c.image_topic}', rendered while subscribed"
         )
+
+    def _renderer(self) -> Camera:
+        """The camera over a world of its own (built on first use) with the entity in it."""
+        if self.camera is not None:
+            return self.camera
+        if self.egl:
+            silence_c_stdout()  # the EGL plugin prints a line per frame from C
+        sim = Simulation(self.world, egl=self.egl, log=self.logger.warn)
+        sim.log = lambda _message: None  # the server has said it all about this model
+        try:
+            entity = sim.spawn(self.entity_name, self.model)
+        except SimulationError as exc:
+            sim.close()
+            raise CameraConfigError(str(exc)) from None
+        self.camera = Camera(sim, entity, self.config)
+        self.logger.info(f"renderer ready: {'EGL' if sim.egl else 'TinyRenderer'}")
+        return self.camera
 
     def _watch(self) -> bool:
         """Whether the image has subscribers; follows the server's state only while it does."""
@@ -142,6 +153,7 @@ class CameraNode:
                     10,
                 ),
             ]
+            self._renderer()
             self.logger.info("image subscribed: rendering")
         elif not watched and self.state_subs:
             for sub in self.state_subs:
@@ -185,13 +197,14 @@ class CameraNode:
         if key <= self.rendered or not self.gate.due(now):
             return False
         pose = truth.pose.pose
-        self.sim.set_state(
-            self.entity,
+        camera = self._renderer()
+        camera.sim.set_state(
+            camera.entity,
             (pose.position.x, pose.position.y, pose.position.z),
             (pose.orientation.x, pose.orientation.y, pose.orientation.z, pose.orientation.w),
             dict(zip(joints.name, (float(v) for v in joints.position), strict=False)),
         )
-        frame = self.camera.render()
+        frame = camera.render()
         self.rendered = key
         if not self.ros.ok():
             return False
@@ -211,7 +224,8 @@ class CameraNode:
 
     def close(self) -> None:
         """Drop the mirrored world."""
-        self.sim.close()
+        if self.camera is not None:
+            self.camera.sim.close()
 
 
 def _camera_config(sensors: tuple[SensorSpec, ...], name: str) -> CameraConfig:

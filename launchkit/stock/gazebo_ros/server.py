@@ -259,7 +259,7 @@ class SimServer:
                 runtime.sensor_pubs[lidar.config.topic].publish(scan)
 
     def _publish_state(self, now: float, runtime: _Runtime) -> None:
-        # The diff drive pairs these two by stamp.
+        # The diff drive and the camera nodes pair these two by stamp.
         base = self.sim.base_state(runtime.entity)
         runtime.truth_pub.publish(
             messages.odometry(_ground_truth(now, runtime.entity.spec.root_link, base))
