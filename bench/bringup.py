@@ -1,18 +1,22 @@
 """Benchmark: the robot bring-up (run by hand; results go in docs/benchmarks.md).
 
-    python bench/bringup.py
+    python bench/bringup.py [--runs 3] [--seconds 10]
 
 Measures, for `launchkit run robot_wheel gazebo_and_rviz.launch.xml start_rviz:=false`:
   * the time from starting the command to the first /odom message (target <= 3 s; the seed's
     Gazebo flow waits 8 s before it even spawns);
   * the simulator's real-time factor headless with the lidar, unpaced (real_time_factor:=0),
     from /clock (target >= 20x);
-  * the same with the seed's 800x800 30 Hz camera subscribed (target >= 1.0x);
+  * with the seed's 800x800 30 Hz camera subscribed, for TinyRenderer and EGL (egl:=true), the
+    server unpaced (real_time_factor:=0) and paced at 1.0: the real-time factor (target >= 1.0x)
+    and the camera frames received per wall second and per sim second (30 nominal), over
+    ``--seconds`` of wall time after the first frame, ``--runs`` times each;
   * the total resident memory of the bring-up (launcher, router, every node).
 """
 
 from __future__ import annotations
 
+import argparse
 import datetime
 import os
 import platform
@@ -89,6 +93,36 @@ class BringUp:
         sim = (last.clock.sec - first.clock.sec) + (last.clock.nanosec - first.clock.nanosec) / 1e9
         return sim / (t1 - t0)
 
+    def with_camera(self, seconds: float) -> tuple[float, float, float]:
+        """(real-time factor, frames per wall s, frames per sim s) with the image subscribed.
+
+        Images are counted undecoded, so the probe's own cost stays small.
+        """
+        from launchkit.ros.msgs.rosgraph_msgs.msg import Clock
+        from launchkit.ros.msgs.sensor_msgs.msg import Image
+
+        frames = [0]
+        clock: list[Any] = []
+
+        def count(_data: bytes) -> None:
+            frames[0] += 1
+
+        qos = self.ros.qos_profile_sensor_data
+        self.node.create_subscription(Image, "/camera1/image_raw", count, qos, raw=True)
+        self.node.create_subscription(Clock, "/clock", clock.append, qos)
+        self._spin_until(lambda: frames[0] > 0 and bool(clock), 60, "a camera image and /clock")
+        f0, c0, t0 = frames[0], _seconds(clock[-1]), time.perf_counter()
+        self._spin_until(lambda: time.perf_counter() - t0 >= seconds, seconds + 5, "the window")
+        f1, c1, t1 = frames[0], _seconds(clock[-1]), time.perf_counter()
+        return (c1 - c0) / (t1 - t0), (f1 - f0) / (t1 - t0), (f1 - f0) / max(c1 - c0, 1e-9)
+
+    def _spin_until(self, done: Any, timeout: float, what: str) -> None:
+        deadline = time.monotonic() + timeout
+        while not done():
+            if time.monotonic() > deadline:
+                raise SystemExit(f"no {what} within {timeout} s")
+            self.ros.spin_once(self.node, timeout_sec=0.01)
+
     def memory_mb(self) -> float:
         """Resident memory of every process in the launch's sessions, in MB."""
         total = 0
@@ -128,14 +162,33 @@ class BringUp:
         self.proc.wait(30)
 
 
+def _seconds(clock: Any) -> float:
+    return float(clock.clock.sec) + float(clock.clock.nanosec) * 1e-9
+
+
+def camera_case(egl: bool, rtf: str, seconds: float) -> tuple[float, float, float]:
+    """One bring-up with the camera subscribed: see :meth:`BringUp.with_camera`."""
+    from launchkit.ros.msgs.nav_msgs.msg import Odometry
+
+    bring = BringUp(f"real_time_factor:={rtf}", f"egl:={str(egl).lower()}")
+    try:
+        bring.first(Odometry, "/odom")
+        return bring.with_camera(seconds)
+    finally:
+        bring.stop()
+
+
 def main() -> None:
     """Run each measurement and print it."""
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("--runs", type=int, default=3, help="runs of each camera case")
+    parser.add_argument("--seconds", type=float, default=10.0, help="camera window, wall s")
+    args = parser.parse_args()
     print(
         f"machine: {platform.node()} {platform.machine()} {os.cpu_count()} cores, "
         f"Python {platform.python_version()}; {datetime.date.today()}"
     )
     from launchkit.ros.msgs.nav_msgs.msg import Odometry
-    from launchkit.ros.msgs.sensor_msgs.msg import Image
 
     paced = BringUp()
     try:
@@ -152,20 +205,20 @@ def main() -> None:
         print(
             f"unpaced real-time factor, lidar only: {fast.real_time_factor(5):.1f}x (target >= 20x)"
         )
-        images: list[Any] = []
-        fast.node.create_subscription(
-            Image, "/camera1/image_raw", images.append, fast.ros.qos_profile_sensor_data
-        )
-        deadline = time.monotonic() + 30
-        while not images and time.monotonic() < deadline:
-            fast.ros.spin_once(fast.node, timeout_sec=0.05)
-        rtf = fast.real_time_factor(5)
-        print(
-            f"unpaced real-time factor with the 800x800 camera subscribed: {rtf:.2f}x "
-            f"(target >= 1.0x; {len(images)} image(s) before measuring)"
-        )
     finally:
         fast.stop()
+    for run in range(1, args.runs + 1):
+        for egl in (False, True):
+            for rtf in ("0", "1.0"):
+                factor, per_wall, per_sim = camera_case(egl, rtf, args.seconds)
+                print(
+                    f"run {run}: 800x800 camera subscribed, "
+                    f"{'EGL' if egl else 'TinyRenderer':12s} "
+                    f"{'unpaced' if rtf == '0' else 'paced 1.0'}: real-time factor "
+                    f"{factor:.2f}x (target >= 1.0x), {per_wall:.1f} frames per wall s, "
+                    f"{per_sim:.1f} per sim s (30 nominal)",
+                    flush=True,
+                )
 
 
 if __name__ == "__main__":

@@ -11,6 +11,7 @@ import pytest
 import yaml
 
 from launchkit.packages import PackageIndex
+from launchkit.stock.gazebo_ros.camera_node import CameraNodeParams, camera_command
 from launchkit.stock.gazebo_ros.diff_drive import DiffDriveParams
 from launchkit.stock.gazebo_ros.plugin_processes import diff_drive_command
 from launchkit.stock.gazebo_ros.server import UsageError, parse_server_args
@@ -61,6 +62,18 @@ def test_spawn_entity_arguments() -> None:
         ("spawn_entity.py", ["-entity", "e", "-x", "left", "-file", "f"], "invalid float value"),
         ("diff_drive", [], "parameter 'entity' is required"),
         ("diff_drive", ["--ros-args", "-p", "entity:=bot"], "<left_joint> is required"),
+        ("camera", [], "parameters 'entity' and 'model' (URDF text) are required"),
+        (
+            "camera",
+            [
+                "--ros-args",
+                "-p",
+                "entity:=bot",
+                "-p",
+                "model:=<robot name='r'><link name='b'/></robot>",
+            ],
+            "the model has no camera sensor",
+        ),
     ],
 )
 def test_bad_command_lines_exit_2_with_one_error(
@@ -102,3 +115,29 @@ def test_diff_drive_child_command_line(tmp_path: Path) -> None:
     values = yaml.safe_load(params_file.read_text())["/**"]["ros__parameters"]
     assert values["entity"] == "bot" and values["wheel_separation"] == 0.5
     assert DiffDriveParams.from_parameters(values) == params
+
+
+def test_camera_child_command_line(tmp_path: Path) -> None:
+    plugin = PluginSpec(
+        "libgazebo_ros_camera.so",
+        "camera_controller",
+        {},
+        RosOptions("robot1", (("image_raw", "image"),)),
+    )
+    params = CameraNodeParams("camera1", "<robot/>", "/worlds/obstacles.world", egl=False)
+    params_file = tmp_path / "p.yaml"
+    argv = camera_command("bot", plugin, params, params_file)
+    assert argv == [
+        sys.executable,
+        "-m",
+        "launchkit.stock.gazebo_ros.camera_node",
+        "--ros-args",
+        "-r",
+        "__node:=camera_controller",
+        "-r",
+        "__ns:=/robot1",
+        "--params-file",
+        str(params_file),
+    ]  # the remapping is already in the camera's topic names (CameraConfig)
+    values = yaml.safe_load(params_file.read_text())["/**"]["ros__parameters"]
+    assert values == {"entity": "bot", **params.as_parameters()}

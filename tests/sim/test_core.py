@@ -13,6 +13,7 @@ from launchkit.stock.gazebo_ros.diff_drive import DiffDriveController, yaw_of
 from launchkit.stock.gazebo_ros.sim.engine import Entity, Simulation, SimulationError
 from launchkit.stock.gazebo_ros.sim.model import ModelError
 from launchkit.stock.gazebo_ros.sim.plugins import EntityPlugins, load_plugins
+from launchkit.stock.gazebo_ros.sim.sensors import Camera
 from launchkit.stock.gazebo_ros.sim.world import load_world, resolve_world
 
 
@@ -132,26 +133,23 @@ def test_lidar_in_the_empty_world_sees_nothing(empty_sim: Simulation, seed_urdf:
     assert all(math.isinf(r) and r > 0 for r in plugins.lidars[0].scan())
 
 
-def test_camera_renders_only_while_wanted(obstacle_sim: Simulation, seed_urdf: str) -> None:
-    small = seed_urdf.replace("<width>800</width>", "<width>64</width>").replace(
+def _small_camera(urdf: str) -> str:
+    return urdf.replace("<width>800</width>", "<width>64</width>").replace(
         "<height>800</height>", "<height>48</height>"
     )
-    _, plugins = spawn_seed(obstacle_sim, small)
-    camera = plugins.cameras[0]
-    assert (camera.config.image_topic, camera.config.info_topic) == (
-        "/camera1/image_raw",
-        "/camera1/camera_info",
-    )
-    for _ in range(120):  # 0.5 s with nobody subscribed
-        obstacle_sim.step()
-        plugins.poll_cameras(obstacle_sim.time, lambda _c: False)
-    assert camera.renders == 0
-    frames = []
-    for _ in range(120):  # 0.5 s subscribed, 30 Hz
-        obstacle_sim.step()
-        frames += plugins.poll_cameras(obstacle_sim.time, lambda _c: True)
-    assert 14 <= camera.renders <= 16
-    image = frames[-1][1]
+
+
+def _red_fraction(image: bytes) -> float:
+    pixels = [image[i : i + 3] for i in range(0, len(image), 3)]
+    return sum(1 for r, g, b in pixels if r > 100 and r > 2 * g and r > 2 * b) / len(pixels)
+
+
+def test_camera_sees_the_box_ahead(obstacle_sim: Simulation, seed_urdf: str) -> None:
+    entity, plugins = spawn_seed(obstacle_sim, _small_camera(seed_urdf))
+    plugin, config = plugins.cameras[0]
+    assert plugin.name == "camera_controller"
+    assert (config.image_topic, config.info_topic) == ("/camera1/image_raw", "/camera1/camera_info")
+    image = Camera(obstacle_sim, entity, config).render()
     assert len(image) == 64 * 48 * 3
     # The red box straight ahead fills the image centre.
     centre = (24 * 64 + 32) * 3
@@ -159,9 +157,30 @@ def test_camera_renders_only_while_wanted(obstacle_sim: Simulation, seed_urdf: s
     assert r > 100 and r > 2 * g and r > 2 * b
 
 
+def test_a_mirror_renders_what_the_world_shows(obstacle_sim: Simulation, seed_urdf: str) -> None:
+    """The camera process's view: a second world put in the first's state by ``set_state``."""
+    urdf = _small_camera(seed_urdf)
+    entity = obstacle_sim.spawn("robot", urdf, (0.3, 0.2, 0.151, 0, 0, 2.0))
+    obstacle_sim.step(240)
+    config = load_plugins(obstacle_sim, entity, lambda _m: None).cameras[0][1]
+    mirror = Simulation(load_world(resolve_world("obstacles")))
+    try:
+        twin = mirror.spawn("robot", urdf)  # at the origin, facing the red box
+        twin_camera = Camera(mirror, twin, config)
+        assert _red_fraction(twin_camera.render()) > 0.01
+        base = obstacle_sim.base_state(entity)
+        joints = {n: s[0] for n, s in obstacle_sim.joint_states(entity).items()}
+        mirror.set_state(twin, base.position, base.orientation, joints)
+        seen = Camera(obstacle_sim, entity, config).render()
+        assert _red_fraction(seen) == 0.0
+        assert twin_camera.render() == seen
+    finally:
+        mirror.close()
+
+
 def test_camera_info_matches_gazebo(obstacle_sim: Simulation, seed_urdf: str) -> None:
     _, plugins = spawn_seed(obstacle_sim, seed_urdf)
-    k, p = plugins.cameras[0].config.intrinsics()
+    k, p = plugins.cameras[0][1].intrinsics()
     assert k[0] == pytest.approx(476.70, abs=0.01) and k[2] == 400.5
     assert p[3] == 0.0
 

@@ -16,7 +16,9 @@ from collections.abc import Callable, Iterator
 from pathlib import Path
 from typing import Any
 
+import numpy as np
 import pytest
+from launchkit.ros.msgs.gazebo_msgs.srv import DeleteEntity
 from launchkit.ros.msgs.geometry_msgs.msg import Twist, Vector3
 from launchkit.ros.msgs.nav_msgs.msg import Odometry
 from launchkit.ros.msgs.rosgraph_msgs.msg import Clock
@@ -276,3 +278,87 @@ def test_spawn_without_a_server_fails_clearly(network: Context) -> None:
     result = spawn("lonely", "-spawn_service_timeout", "0.5")
     assert result.returncode == 2
     assert "service /spawn_entity not available within 0.5 s" in result.stderr
+
+
+def _red_fraction(image: Any) -> float:
+    """The share of an rgb8 image's pixels that are clearly red (the obstacles world's box)."""
+    rgb = np.asarray(image.data, dtype=np.int16).reshape(image.height, image.width, 3)
+    r, g, b = rgb[:, :, 0], rgb[:, :, 1], rgb[:, :, 2]
+    return float(((r > 100) & (r > 2 * g) & (r > 2 * b)).mean())
+
+
+def _camera_pid(server: Server) -> int:
+    started = server.expect(r"started plugin node 'camera_controller' \(pid (\d+)\)", 20)
+    return int(started.group(1))
+
+
+def test_camera_renders_in_its_own_process_and_follows_the_robot(
+    server: Server, probe: Node
+) -> None:
+    assert spawn("my_robot").returncode == 0
+    pid = _camera_pid(server)
+    assert pid != server.proc.pid
+    assert "launchkit.stock.gazebo_ros.camera_node" in Path(f"/proc/{pid}/cmdline").read_text()
+    images: list[Any] = []
+    truth: list[Any] = []
+    probe.create_subscription(Image, "/camera1/image_raw", images.append, QoSProfile(depth=2))
+    probe.create_subscription(Odometry, "/gazebo/my_robot/ground_truth", truth.append, 50)
+    spin_until(probe, lambda: bool(images and truth), 30, "a camera image and ground truth")
+    assert _red_fraction(images[-1]) > 0.01  # spawned facing the red box
+
+    # Turn about half a circle: the camera process knows only what the server's state says.
+    cmd = probe.create_publisher(Twist, "/cmd_vel", 1)
+    cmd.publish(Twist(angular=Vector3(z=1.0)))
+    spin_until(
+        probe, lambda: abs(yaw_of(_quaternion(truth[-1]))) > 2.8, 30, "the robot to turn around"
+    )
+    cmd.publish(Twist())
+    turned = stamp(truth[-1])
+    spin_until(probe, lambda: stamp(images[-1]) > turned, 30, "an image after the turn")
+    assert _red_fraction(images[-1]) == 0.0
+
+
+def test_camera_stops_with_its_subscribers_and_never_holds_up_the_physics(
+    server: Server, probe: Node
+) -> None:
+    assert spawn("my_robot").returncode == 0
+    pid = _camera_pid(server)
+    images: list[Any] = []
+    clocks: list[Any] = []
+    image_sub = probe.create_subscription(
+        Image, "/camera1/image_raw", images.append, QoSProfile(depth=2)
+    )
+    probe.create_subscription(Clock, "/clock", clocks.append, 10)
+    spin_until(probe, lambda: bool(images and clocks), 30, "a camera image and /clock")
+    server.expect(r"\[camera_controller\]: image subscribed: rendering", 10)
+
+    # A renderer frozen mid-stream: the server's clock goes on.
+    os.kill(pid, signal.SIGSTOP)
+    try:
+        frozen = stamp(images[-1])
+        spin_until(
+            probe,
+            lambda: _clock_seconds(clocks[-1]) > frozen + 2.0,
+            30,
+            "/clock to advance 2 sim s while the camera process is stopped",
+        )
+    finally:
+        os.kill(pid, signal.SIGCONT)
+    spin_until(probe, lambda: stamp(images[-1]) > frozen + 2.0, 30, "images after the thaw")
+
+    probe.destroy_subscription(image_sub)
+    server.expect(r"\[camera_controller\]: no image subscribers: rendering stopped", 20)
+
+
+def test_deleting_the_entity_stops_its_camera(server: Server, probe: Node) -> None:
+    assert spawn("my_robot").returncode == 0
+    pid = _camera_pid(server)
+    client = probe.create_client(DeleteEntity, "/delete_entity")
+    assert client.wait_for_service(10)
+    response = client.call(DeleteEntity.Request(name="my_robot"), 20)
+    assert response.success, response.status_message
+    assert not _alive(pid)
+
+
+def _clock_seconds(msg: Any) -> float:
+    return float(msg.clock.sec) + float(msg.clock.nanosec) * 1e-9

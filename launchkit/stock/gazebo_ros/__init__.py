@@ -1,4 +1,4 @@
-"""gazebo_ros stand-in: a PyBullet simulator server, ``spawn_entity.py`` and the diff drive node.
+"""gazebo_ros stand-in: a PyBullet server, ``spawn_entity.py``, the diff drive and camera nodes.
 
 The share directory holds ``launch/gazebo.launch.py`` (as gazebo_ros ships it) and ``worlds/``.
 See ``docs/simulation.md``.
@@ -20,5 +20,6 @@ PACKAGE = PythonPackage(
         "gazebo": "launchkit.stock.gazebo_ros.server",
         "spawn_entity.py": "launchkit.stock.gazebo_ros.spawn_entity",
         "diff_drive": "launchkit.stock.gazebo_ros.diff_drive_node",
+        "camera": "launchkit.stock.gazebo_ros.camera_node",
     },
 )

@@ -21,6 +21,7 @@ from launchkit.stock.gazebo_ros.diff_drive import (
     DiffDriveController,
     DiffDriveParams,
 )
+from launchkit.stock.gazebo_ros.state_pairs import StatePairs, nanoseconds
 
 
 def _msg(package: str, name: str) -> Any:
@@ -42,9 +43,7 @@ class DiffDriveNode:
             values[name] = node.declare_parameter(name, getattr(defaults, name)).value
         self.params = DiffDriveParams.from_parameters(values)
         self.controller: DiffDriveController | None = None
-        # Ground truth and joint states of one sim instant, paired by stamp (nanoseconds).
-        self._truths: dict[int, BaseState] = {}
-        self._states: dict[int, Any] = {}
+        self._pairs: StatePairs[BaseState] = StatePairs()
         p = self.params
         self.odom_pub = node.create_publisher(_msg("nav_msgs", "Odometry"), p.odometry_topic, 1)
         self.tf_pub = node.create_publisher(_msg("tf2_msgs", "TFMessage"), "/tf", 100)
@@ -78,29 +77,22 @@ class DiffDriveNode:
 
     def _truth(self, msg: Any) -> None:
         pose, twist = msg.pose.pose, msg.twist.twist
-        key = _nanoseconds(msg)
-        self._truths[key] = BaseState(
-            (pose.position.x, pose.position.y, pose.position.z),
-            (pose.orientation.x, pose.orientation.y, pose.orientation.z, pose.orientation.w),
-            (twist.linear.x, twist.linear.y, twist.linear.z),
-            (twist.angular.x, twist.angular.y, twist.angular.z),
+        pair = self._pairs.add_truth(
+            nanoseconds(msg),
+            BaseState(
+                (pose.position.x, pose.position.y, pose.position.z),
+                (pose.orientation.x, pose.orientation.y, pose.orientation.z, pose.orientation.w),
+                (twist.linear.x, twist.linear.y, twist.linear.z),
+                (twist.angular.x, twist.angular.y, twist.angular.z),
+            ),
         )
-        self._pair(key)
+        if pair is not None:
+            self._step(*pair)
 
     def _joints(self, msg: Any) -> None:
-        key = _nanoseconds(msg)
-        self._states[key] = msg
-        self._pair(key)
-
-    def _pair(self, key: int) -> None:
-        if key not in self._states or key not in self._truths:
-            return
-        msg, base = self._states.pop(key), self._truths.pop(key)
-        for stale in [k for k in self._states if k < key]:
-            del self._states[stale]
-        for stale in [k for k in self._truths if k < key]:
-            del self._truths[stale]
-        self._step(msg, base)
+        pair = self._pairs.add_joints(nanoseconds(msg), msg)
+        if pair is not None:
+            self._step(*pair)
 
     def _step(self, msg: Any, base: BaseState) -> None:
         now = messages.seconds_of(msg.header.stamp)
@@ -139,10 +131,6 @@ class DiffDriveNode:
             self.odom_pub.publish(messages.odometry(update.odometry))
         if p.publish_odom_tf:
             self.tf_pub.publish(messages.transform(update.odometry))
-
-
-def _nanoseconds(msg: Any) -> int:
-    return int(msg.header.stamp.sec) * 1_000_000_000 + int(msg.header.stamp.nanosec)
 
 
 def main(argv: list[str] | None = None) -> int:

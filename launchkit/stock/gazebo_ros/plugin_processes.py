@@ -1,4 +1,4 @@
-"""The simulator server's child processes: one ``diff_drive`` node per diff drive plugin.
+"""The simulator server's child processes: a node per diff drive plugin and per camera plugin.
 
 Gazebo runs plugins inside the server; launchkit runs the diff drive as its own node process so
 it is visible in ``launchkit node list`` and testable alone. Under ``launchkit run`` the server
@@ -32,6 +32,7 @@ from pathlib import Path
 import yaml
 
 from launchkit.runtime.supervisor_client import SupervisorClient, SupervisorError
+from launchkit.stock.gazebo_ros.camera_node import CameraNodeParams, camera_command
 from launchkit.stock.gazebo_ros.diff_drive import DiffDriveParams
 from launchkit.stock.gazebo_ros.sim.model import PluginSpec
 
@@ -121,6 +122,11 @@ class PluginProcesses:
             except OSError as error:
                 self.log(f"cannot reach the launcher ({error}); the server runs its plugin nodes")
         return self._launcher
+
+    def start_camera(self, entity: str, plugin: PluginSpec, params: CameraNodeParams) -> None:
+        """Start the camera node of ``plugin`` for ``entity`` (it renders in its own process)."""
+        params_file = Path(self._tmp.name) / f"{entity}-{plugin.name}.yaml"
+        self._start_child(entity, plugin.name, camera_command(entity, plugin, params, params_file))
 
     def _spawn(self, child: Child) -> None:
         child.process = subprocess.Popen(

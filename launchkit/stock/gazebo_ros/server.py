@@ -3,15 +3,17 @@
 Accepts Gazebo's command line (``gazebo --verbose -s libgazebo_ros_init.so -s
 libgazebo_ros_factory.so [WORLD]``) and ROS arguments after ``--ros-args``. With the init plugin it
 publishes ``/clock``; with the factory plugin it serves ``/spawn_entity`` and ``/delete_entity``.
-Spawned models get their sensors published and their diff drive run as a node process of its
-own, started by the launcher under ``launchkit run`` and by the server otherwise
-(:mod:`plugin_processes`). Parameters: ``real_time_factor`` (1.0; 0 = as fast as possible),
-``publish_rate`` (/clock Hz, 10), ``time_step`` (s, 1/240), ``state_rate`` (Hz of the joint states
-the diff drive reads, 120), ``gui`` (false), ``egl`` (false), ``world``, and two choices where
-launchkit differs from gazebo_ros for the seed's sake: ``ray_sensor_topic`` (``scan``: where a ray
-sensor publishes unless its ``<ros>`` block remaps ``~/out``; ``~/out`` is gazebo_ros's choice)
-and ``joint_state_rate`` (50 Hz of ``/joint_states`` for a model without a joint state plugin;
-0 for none, as in Gazebo; see :mod:`sim.joint_states`).
+Spawned models get their lidars and joint states published, and their diff drives and cameras
+run as node processes of their own, started by the launcher under ``launchkit run`` and by the
+server otherwise (:mod:`plugin_processes`): the physics loop never renders. Parameters:
+``real_time_factor`` (1.0; 0 = as fast as possible), ``publish_rate`` (/clock Hz, 10),
+``time_step`` (s, 1/240), ``state_rate`` (Hz of the joint states and ground truth the diff drive
+and cameras read, 120), ``gui`` (false), ``egl`` (the cameras render with PyBullet's EGL plugin,
+TinyRenderer if it cannot load; true), ``world``, and two choices where launchkit differs from
+gazebo_ros for the seed's sake: ``ray_sensor_topic`` (``scan``: where a ray sensor publishes
+unless its ``<ros>`` block remaps ``~/out``; ``~/out`` is gazebo_ros's choice) and
+``joint_state_rate`` (50 Hz of ``/joint_states`` for a model without a joint state plugin; 0 for
+none, as in Gazebo; see :mod:`sim.joint_states`).
 """
 
 from __future__ import annotations
@@ -22,19 +24,20 @@ import importlib
 import os
 import signal
 import sys
-from collections.abc import Callable
 from dataclasses import dataclass, field
+from pathlib import Path
 from typing import Any
 
 from launchkit.stock.gazebo_ros import messages
 from launchkit.stock.gazebo_ros._shutdown import shutdown_within
+from launchkit.stock.gazebo_ros.camera_node import CameraNodeParams
 from launchkit.stock.gazebo_ros.plugin_processes import PluginProcesses
 from launchkit.stock.gazebo_ros.sim.engine import Entity, Simulation, SimulationError
 from launchkit.stock.gazebo_ros.sim.joint_states import JointStateOutput
 from launchkit.stock.gazebo_ros.sim.model import ModelError
 from launchkit.stock.gazebo_ros.sim.pacing import Pacer
 from launchkit.stock.gazebo_ros.sim.plugins import EntityPlugins, PluginDefaults, load_plugins
-from launchkit.stock.gazebo_ros.sim.sensors import CameraConfig, RateGate
+from launchkit.stock.gazebo_ros.sim.sensors import RateGate
 from launchkit.stock.gazebo_ros.sim.world import load_world, resolve_world
 
 INIT_PLUGIN = "libgazebo_ros_init.so"
@@ -122,7 +125,7 @@ class SimServer:
         time_step = float(p.declare_parameter("time_step", 1.0 / 240.0).value)
         state_rate = float(p.declare_parameter("state_rate", 120.0).value)
         gui = bool(p.declare_parameter("gui", options.gui).value)
-        egl = bool(p.declare_parameter("egl", False).value)
+        self.egl = bool(p.declare_parameter("egl", True).value)
         world_name = str(p.declare_parameter("world", options.world).value) or "empty"
         self.plugin_defaults = PluginDefaults(
             ray_topic=str(p.declare_parameter("ray_sensor_topic", "scan").value) or "~/out",
@@ -134,8 +137,9 @@ class SimServer:
         if gui and not os.environ.get("DISPLAY"):
             self.logger.warn("a GUI was asked for but there is no DISPLAY; running headless")
             gui = False
-        world = load_world(resolve_world(world_name))
-        self.sim = Simulation(world, time_step=time_step, gui=gui, egl=egl, log=self.logger.info)
+        self.world_file = str(resolve_world(world_name).resolve())
+        world = load_world(Path(self.world_file))
+        self.sim = Simulation(world, time_step=time_step, gui=gui, log=self.logger.info)
         self.logger.info(
             f"world '{world.name}' loaded ({len(world.shapes)} obstacles), step {time_step:.5f} s, "
             f"real-time factor {rtf if rtf > 0 else 'unlimited'}"
@@ -191,7 +195,7 @@ class SimServer:
             response.success = False
             response.status_message = f"SpawnEntity: {exc}"
             return response
-        self._start_runtime(entity, plugins)
+        self._start_runtime(entity, plugins, xml)
         response.success = True
         response.status_message = f"SpawnEntity: Successfully spawned entity [{name}]"
         self.logger.info(response.status_message)
@@ -212,7 +216,7 @@ class SimServer:
         self.logger.info(response.status_message)
         return response
 
-    def _start_runtime(self, entity: Entity, plugins: EntityPlugins) -> None:
+    def _start_runtime(self, entity: Entity, plugins: EntityPlugins, model: str) -> None:
         p, name = self.node, entity.name
         joint_state = _msg("sensor_msgs", "JointState")
         odometry = _msg("nav_msgs", "Odometry")
@@ -232,14 +236,6 @@ class SimServer:
             runtime.sensor_pubs[lidar.config.topic] = p.create_publisher(
                 _msg("sensor_msgs", "LaserScan"), lidar.config.topic, self.sensor_qos
             )
-        for camera in plugins.cameras:
-            c = camera.config
-            runtime.sensor_pubs[c.image_topic] = p.create_publisher(
-                _msg("sensor_msgs", "Image"), c.image_topic, self.sensor_qos
-            )
-            runtime.sensor_pubs[c.info_topic] = p.create_publisher(
-                _msg("sensor_msgs", "CameraInfo"), c.info_topic, self.sensor_qos
-            )
         for output in plugins.joint_states:
             publisher = p.create_publisher(joint_state, output.topic, 10)
             runtime.joint_state_pubs.append((output, publisher, RateGate(output.rate)))
@@ -253,6 +249,9 @@ class SimServer:
         self._yield_joint_state_topics()  # joint_state_publisher may be running already
         for plugin, params in plugins.diff_drives:
             self.children.start_diff_drive(name, plugin, params)
+        for plugin, config in plugins.cameras:
+            camera = CameraNodeParams(config.sensor, model, self.world_file, self.egl)
+            self.children.start_camera(name, plugin, camera)
 
     def _command(self, entity: str, msg: Any) -> None:
         runtime = self.runtimes.get(entity)
@@ -285,14 +284,9 @@ class SimServer:
             for lidar, ranges in runtime.plugins.poll_lidars(now):
                 scan = messages.laser_scan(lidar.config, now, ranges)
                 runtime.sensor_pubs[lidar.config.topic].publish(scan)
-            pubs = runtime.sensor_pubs
-            for camera, frame in runtime.plugins.poll_cameras(now, _has_subscribers(pubs)):
-                c = camera.config
-                pubs[c.image_topic].publish(messages.image(c, now, frame))
-                pubs[c.info_topic].publish(messages.camera_info(c, now))
 
     def _publish_state(self, now: float, runtime: _Runtime) -> None:
-        # The diff drive pairs these two by stamp.
+        # The diff drive and the camera nodes pair these two by stamp.
         base = self.sim.base_state(runtime.entity)
         runtime.truth_pub.publish(
             messages.odometry(_ground_truth(now, runtime.entity.spec.root_link, base))
@@ -353,11 +347,6 @@ class SimServer:
         """Stop the children and the physics."""
         self.children.stop()
         self.sim.close()
-
-
-def _has_subscribers(pubs: dict[str, Any]) -> Callable[[CameraConfig], bool]:
-    """Whether a camera's image topic has a subscriber (only then is it rendered)."""
-    return lambda config: bool(pubs[config.image_topic].get_subscription_count() > 0)
 
 
 def _ground_truth(now: float, root: str, base: Any) -> Any:

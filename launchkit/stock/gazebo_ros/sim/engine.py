@@ -357,6 +357,23 @@ class Simulation:
         offset = tuple(a - b for a, b in zip(position, root_position, strict=False))
         return _rotate(_conjugate(root_orientation), offset)
 
+    def set_state(
+        self,
+        entity: Entity,
+        position: tuple[float, float, float],
+        orientation: tuple[float, float, float, float],
+        joint_positions: dict[str, float],
+    ) -> None:
+        """Put ``entity`` in a pose without physics: base pose as :meth:`base_state` reports it
+        and the named joints' positions (a renderer mirroring another world uses this)."""
+        self.p.resetBasePositionAndOrientation(
+            entity.body, position, orientation, physicsClientId=self.client
+        )
+        for joint, angle in joint_positions.items():
+            index = entity.joints.get(joint)
+            if index is not None:
+                self.p.resetJointState(entity.body, index, angle, physicsClientId=self.client)
+
     def set_joint_velocities(
         self, entity: Entity, velocities: dict[str, float], max_force: float
     ) -> None:

@@ -9,7 +9,7 @@ from launchkit.stock.gazebo_ros.diff_drive import DiffDriveParams, wheel_geometr
 from launchkit.stock.gazebo_ros.sim.engine import Entity, Simulation, SimulationError
 from launchkit.stock.gazebo_ros.sim.joint_states import JOINT_STATE_PUBLISHER, JointStateOutput
 from launchkit.stock.gazebo_ros.sim.model import ModelError, PluginSpec
-from launchkit.stock.gazebo_ros.sim.sensors import Camera, CameraConfig, Lidar, LidarConfig
+from launchkit.stock.gazebo_ros.sim.sensors import CameraConfig, Lidar, LidarConfig
 
 DIFF_DRIVE = "gazebo_ros_diff_drive"
 RAY_SENSOR = "gazebo_ros_ray_sensor"
@@ -28,27 +28,17 @@ class PluginDefaults:
 
 @dataclass
 class EntityPlugins:
-    """What runs for one entity: diff drives (configured, run elsewhere), joint state streams,
-    lidars, cameras."""
+    """What runs for one entity: lidars and joint state streams, and diff drives and cameras
+    (configured, run elsewhere)."""
 
     diff_drives: list[tuple[PluginSpec, DiffDriveParams]] = field(default_factory=list)
     joint_states: list[JointStateOutput] = field(default_factory=list)
     lidars: list[Lidar] = field(default_factory=list)
-    cameras: list[Camera] = field(default_factory=list)
+    cameras: list[tuple[PluginSpec, CameraConfig]] = field(default_factory=list)
 
     def poll_lidars(self, now: float) -> list[tuple[Lidar, list[float]]]:
         """Scans of the lidars due at sim time ``now``."""
         return [(lidar, lidar.scan()) for lidar in self.lidars if lidar.gate.due(now)]
-
-    def poll_cameras(
-        self, now: float, wanted: Callable[[CameraConfig], bool]
-    ) -> list[tuple[Camera, bytes]]:
-        """Frames of the cameras due at ``now`` that someone ``wanted`` (nobody: no rendering)."""
-        frames: list[tuple[Camera, bytes]] = []
-        for camera in self.cameras:
-            if camera.gate.due(now) and wanted(camera.config):
-                frames.append((camera, camera.render()))
-        return frames
 
 
 def load_plugins(
@@ -100,7 +90,8 @@ def load_plugins(
                     )
                 found.lidars.append(Lidar(sim, entity, config))
             elif sensor.type == "camera" and CAMERA in libraries:
-                found.cameras.append(Camera(sim, entity, CameraConfig.from_sensor(sensor, log)))
+                # The first plugin names the node, as CameraConfig reads it.
+                found.cameras.append((sensor.plugins[0], CameraConfig.from_sensor(sensor, log)))
             else:
                 log(f"sensor '{sensor.name}' (type {sensor.type}) has no ROS plugin; ignored")
         except ValueError as exc:

@@ -257,12 +257,14 @@ class Lidar:
 
 
 class Camera:
-    """Renders the camera's view (TinyRenderer, or EGL when the simulation loaded it)."""
+    """Renders the camera's view (TinyRenderer, or EGL when the simulation loaded it).
+
+    The simulator server does not render: the camera node process (:mod:`camera_node`) owns a
+    :class:`Simulation` mirroring the server's and renders it with this.
+    """
 
     def __init__(self, sim: Simulation, entity: Entity, config: CameraConfig) -> None:
         self.sim, self.entity, self.config = sim, entity, config
-        self.renders = 0
-        self.gate = RateGate(config.update_rate)
         self._projection = sim.p.computeProjectionMatrixFOV(
             config.vertical_fov_degrees, config.width / config.height, config.near, config.far
         )
@@ -285,7 +287,6 @@ class Camera:
             flags=p.ER_NO_SEGMENTATION_MASK,
             physicsClientId=self.sim.client,
         )
-        self.renders += 1
         import numpy as np
 
         pixels = np.asarray(rgba, dtype=np.uint8).reshape(c.height, c.width, 4)

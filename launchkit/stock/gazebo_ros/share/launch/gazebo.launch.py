@@ -1,8 +1,9 @@
 """Start the simulator server as gazebo_ros's gazebo.launch.py does (PyBullet in place of Gazebo).
 
 Arguments (gazebo_ros's names): world, verbose, pause, init, factory, gui, plus
-real_time_factor. One difference: ``gui`` defaults to false here (the server is headless unless a
-GUI is asked for and a display exists), and the GUI is drawn by the server itself, not gzclient.
+real_time_factor and egl (cameras render with PyBullet's EGL plugin; false: TinyRenderer). One
+difference: ``gui`` defaults to false here (the server is headless unless a GUI is asked for and
+a display exists), and the GUI is drawn by the server itself, not gzclient.
 """
 
 import sys
@@ -44,6 +45,11 @@ def generate_launch_description():
             default_value="1.0",
             description="sim seconds per wall second (0: as fast as possible)",
         ),
+        DeclareLaunchArgument(
+            "egl",
+            default_value="true",
+            description="render cameras with PyBullet's EGL plugin (false: TinyRenderer)",
+        ),
     ]
     server = ExecuteProcess(
         name="gzserver",
@@ -67,6 +73,8 @@ def generate_launch_description():
             ["pause:=", LaunchConfiguration("pause")],
             "-p",
             ["real_time_factor:=", LaunchConfiguration("real_time_factor")],
+            "-p",
+            ["egl:=", LaunchConfiguration("egl")],
         ],
         output="screen",
     )
