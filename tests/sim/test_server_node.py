@@ -112,9 +112,9 @@ def network(monkeypatch: pytest.MonkeyPatch) -> Iterator[Context]:
 
 @pytest.fixture
 def server(network: Context) -> Iterator[Server]:
-    """``gazebo --verbose -s ... obstacles`` at 4× real time."""
+    """``gazebo --verbose -s ... obstacles`` at 2× real time."""
     args = ["--verbose", "-s", "libgazebo_ros_init.so", "-s", "libgazebo_ros_factory.so"]
-    process = Server([*args, "obstacles", "--ros-args", "-p", "real_time_factor:=4.0"])
+    process = Server([*args, "obstacles", "--ros-args", "-p", "real_time_factor:=2.0"])
     try:
         yield process
     finally:
@@ -212,7 +212,7 @@ def test_spawned_robot_publishes_drives_and_turns(probe: Node) -> None:
     # Forward: 0.5 m/s for 2 s of sim time. The seed's wheels drive it toward base -x.
     cmd.publish(Twist(linear=Vector3(x=0.5)))
     # Measure from the first sign of motion: on a loaded machine the command may reach the
-    # server (stepping at 4x real time) a good part of a simulated second later.
+    # server (stepping at 2x real time) a good part of a simulated second later.
     spin_until(
         probe, lambda: abs(odom[-1].twist.twist.linear.x) > 0.02, 20, "the robot to start moving"
     )
