@@ -85,3 +85,15 @@ def test_a_bad_joint_state_plugin_is_a_clear_error(
     )
     with pytest.raises(SimulationError, match=expected):
         load_plugins(empty_sim, entity, lambda _m: None, SERVER_DEFAULTS)
+
+
+def test_the_state_stream_runs_at_the_plugins_common_rate(
+    empty_sim: Simulation, seed_urdf: str
+) -> None:
+    entity = empty_sim.spawn("robot", seed_urdf)
+    plugins = load_plugins(empty_sim, entity, lambda _m: None)
+    assert plugins.state_rate(120.0) == 30.0  # the drive's 15 Hz and the camera's 30 Hz
+    assert plugins.state_rate(20.0) == 20.0
+    odd = seed_urdf.replace("<update_rate>15.0</update_rate>", "<update_rate>12.5</update_rate>")
+    entity = empty_sim.spawn("odd", odd)
+    assert load_plugins(empty_sim, entity, lambda _m: None).state_rate(120.0) == 120.0

@@ -7,13 +7,14 @@ Spawned models get their lidars and joint states published, and their diff drive
 run as node processes of their own, started by the launcher under ``launchkit run`` and by the
 server otherwise (:mod:`plugin_processes`): the physics loop never renders. Parameters:
 ``real_time_factor`` (1.0; 0 = as fast as possible), ``publish_rate`` (/clock Hz, 10),
-``time_step`` (s, 1/240), ``state_rate`` (Hz of the joint states and ground truth the diff drive
-and cameras read, 120), ``gui`` (false), ``egl`` (the cameras render with PyBullet's EGL plugin,
-TinyRenderer if it cannot load; true), ``world``, and two choices where launchkit differs from
-gazebo_ros for the seed's sake: ``ray_sensor_topic`` (``scan``: where a ray sensor publishes
-unless its ``<ros>`` block remaps ``~/out``; ``~/out`` is gazebo_ros's choice) and
-``joint_state_rate`` (50 Hz of ``/joint_states`` for a model without a joint state plugin; 0 for
-none, as in Gazebo; see :mod:`sim.joint_states`).
+``time_step`` (s, 1/240), ``state_rate`` (the most Hz of the joint states and ground truth the
+diff drive and cameras read, 120; see :meth:`EntityPlugins.state_rate`), ``gui`` (false), ``egl``
+(the cameras render with PyBullet's EGL plugin, TinyRenderer if it cannot load; true),
+``world``, and two choices where launchkit differs from gazebo_ros for the seed's sake:
+``ray_sensor_topic`` (``scan``: where a ray sensor publishes unless its ``<ros>`` block remaps
+``~/out``; ``~/out`` is gazebo_ros's choice) and ``joint_state_rate`` (50 Hz of ``/joint_states``
+for a model without a joint state plugin; 0 for none, as in Gazebo; see
+:mod:`sim.joint_states`).
 """
 
 from __future__ import annotations
@@ -245,7 +246,7 @@ class SimServer:
                     f"at {output.rate:g} Hz while no other node does (joint_state_rate:=0 for none)"
                 )
         self.runtimes[name] = runtime
-        self.state_gates[name] = RateGate(self.state_rate)
+        self.state_gates[name] = RateGate(plugins.state_rate(self.state_rate))
         self._yield_joint_state_topics()  # joint_state_publisher may be running already
         for plugin, params in plugins.diff_drives:
             self.children.start_diff_drive(name, plugin, params)

@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import math
 from collections.abc import Callable
 from dataclasses import dataclass, field
 
@@ -39,6 +40,19 @@ class EntityPlugins:
     def poll_lidars(self, now: float) -> list[tuple[Lidar, list[float]]]:
         """Scans of the lidars due at sim time ``now``."""
         return [(lidar, lidar.scan()) for lidar in self.lidars if lidar.gate.due(now)]
+
+    def state_rate(self, ceiling: float) -> float:
+        """Hz of the state (joint states, ground truth) the diff drive and camera nodes read.
+
+        The least common multiple of their update rates, so each keeps its exact period on the
+        stream (30 Hz for the seed's 15 Hz drive and 30 Hz camera), at most ``ceiling``; the
+        ceiling itself when a rate is not a whole number or is 0 (every step, in Gazebo).
+        """
+        rates = [params.update_rate for _, params in self.diff_drives]
+        rates += [config.update_rate for _, config in self.cameras]
+        if not rates or any(r <= 0 or r != int(r) for r in rates):
+            return ceiling
+        return float(min(math.lcm(*(int(r) for r in rates)), ceiling))
 
 
 def load_plugins(
