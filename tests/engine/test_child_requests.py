@@ -18,7 +18,7 @@ from pathlib import Path
 import pytest
 
 from launchkit.runtime.supervisor_client import SupervisorClient, SupervisorError
-from tests.engine.launcher import Launcher, alive, executable, wait_gone
+from tests.engine.launcher import alive, executable, wait_gone
 
 KID = "import time; print('kid up', flush=True); time.sleep(300)"
 STUBBORN_KID = (
@@ -71,26 +71,6 @@ def owner(tmp_path: Path, kid: str = KID, then: str = "") -> str:
     script = tmp_path / "owner.py"
     script.write_text(OWNER.replace("@KID@", repr(kid)).replace("@THEN@", then))
     return f'<executable name="owner" output="screen" cmd="{sys.executable} {script}"/>'
-
-
-@pytest.fixture
-def run(tmp_path: Path):  # type: ignore[no-untyped-def]
-    """Start ``launchkit run`` on a launch file body; everything is killed at the end."""
-    started: list[Launcher] = []
-
-    def start(body: str) -> Launcher:
-        path = tmp_path / "t.launch.xml"
-        path.write_text(f"<launch>\n{body}\n</launch>\n")
-        launcher = Launcher(str(path), cwd=tmp_path, env={"ROS_LOG_DIR": str(tmp_path)})
-        started.append(launcher)
-        return launcher
-
-    yield start
-    for launcher in started:
-        if launcher.proc.poll() is None:
-            launcher.kill()
-        launcher.close()
-        wait_gone(list(launcher.pids.values()))
 
 
 def test_a_requested_child_is_prefixed_respawned_and_stopped_with_its_owner(run, tmp_path) -> None:  # type: ignore[no-untyped-def]

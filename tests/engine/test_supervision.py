@@ -10,43 +10,15 @@ from __future__ import annotations
 
 import os
 import signal
-from pathlib import Path
 
 import pytest
 
-from tests.engine.launcher import Launcher, alive, executable, wait_gone
+from tests.engine.launcher import alive, executable, wait_gone
 
 IGNORE_SIGINT = (
     "import signal, time; signal.signal(signal.SIGINT, signal.SIG_IGN); "
     "{extra}print('ready', flush=True); time.sleep(300)"
 )
-
-
-def write(tmp_path: Path, body: str, name: str = "t.launch.xml") -> Path:
-    """A launch file with ``body`` inside ``<launch>``."""
-    path = tmp_path / name
-    path.write_text(f"<launch>\n{body}\n</launch>\n")
-    return path
-
-
-@pytest.fixture
-def run(tmp_path: Path):  # type: ignore[no-untyped-def]
-    """Start ``launchkit run`` on a launch file body; everything is killed at the end."""
-    started: list[Launcher] = []
-
-    def start(body: str, *args: str) -> Launcher:
-        launcher = Launcher(
-            str(write(tmp_path, body)), *args, cwd=tmp_path, env={"ROS_LOG_DIR": str(tmp_path)}
-        )
-        started.append(launcher)
-        return launcher
-
-    yield start
-    for launcher in started:
-        if launcher.proc.poll() is None:
-            launcher.kill()
-        launcher.close()
-        wait_gone(list(launcher.pids.values()))
 
 
 def test_screen_output_is_prefixed_and_in_order(run) -> None:  # type: ignore[no-untyped-def]
