@@ -35,6 +35,17 @@ class NodeNetwork:
             runtime.log("INFO", "launch", f"{verb} the ROS router at {self._router.endpoint}")
         return {ROUTER_ENV: self._router.endpoint}
 
+    def known(self) -> dict[str, str]:
+        """Environment additions for any other process: where the router is or will be, when
+        the launch knows (``--router``, or a router already started), without starting one.
+
+        A plain ``<executable>`` may still be a ROS program (gazebo_ros's ``gzserver`` is an
+        ``ExecuteProcess``); in ROS it finds the others through DDS, here it needs the address.
+        """
+        if self._router is not None:
+            return {ROUTER_ENV: self._router.endpoint}
+        return {ROUTER_ENV: self.endpoint} if self.endpoint else {}
+
     def close(self) -> None:
         """Stop the router if this launch hosts it."""
         if self._router is not None:

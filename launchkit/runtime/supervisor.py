@@ -218,6 +218,8 @@ class Supervisor:
             except LaunchkitError as error:
                 self.fail(error)
                 return
+        elif self.network is not None:
+            spec.env.update(self.network.known())
         process = self._managed(spec)
         self.processes.append(process)
         self._spawn(process)

@@ -47,6 +47,18 @@ def test_all_well_exits_zero_after_timer_shutdown(run) -> None:  # type: ignore[
     wait_gone(list(launcher.pids.values()))
 
 
+def test_executables_learn_the_router_given_with_dash_dash_router(
+    run, monkeypatch: pytest.MonkeyPatch
+) -> None:  # type: ignore[no-untyped-def]
+    # A plain <executable> may be a ROS program (gazebo_ros's gzserver is an ExecuteProcess).
+    monkeypatch.delenv("LAUNCHKIT_ROUTER", raising=False)
+    endpoint = "tcp/127.0.0.1:17999"
+    code = "import os; print('router', os.environ.get('LAUNCHKIT_ROUTER'), flush=True)"
+    launcher = run(executable("probe", code), "--router", endpoint)
+    assert launcher.wait_line("router ").endswith(f"router {endpoint}")
+    assert launcher.finish() == 0
+
+
 def test_missing_program_is_an_error(run) -> None:  # type: ignore[no-untyped-def]
     launcher = run('<executable cmd="no-such-program-xyz --flag"/>')
     assert launcher.finish() != 0
