@@ -9,7 +9,7 @@ from pathlib import Path
 from typing import IO
 
 from launchkit.checks import CheckedTree, check_tree, undeclared_arguments
-from launchkit.description.context import LaunchContext, Runtime
+from launchkit.description.launch_context import LaunchContext, Runtime
 from launchkit.errors import PackageNotFoundError
 from launchkit.frontend.xml_parser import XmlParser
 from launchkit.packages import PackageIndex

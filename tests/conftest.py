@@ -9,8 +9,8 @@ from pathlib import Path
 import pytest
 
 from launchkit.checks import check_tree
-from launchkit.description.context import LaunchContext
-from launchkit.description.process import ProcessSpec
+from launchkit.description.launch_context import LaunchContext
+from launchkit.description.process_spec import ProcessSpec
 from launchkit.frontend.xml_parser import XmlParser
 from launchkit.packages import PackageIndex
 from launchkit.runtime.recorder import Recorded, Recorder

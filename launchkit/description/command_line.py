@@ -15,7 +15,7 @@ from launchkit.description.substitutions.base import Text, Value
 from launchkit.errors import RuntimeLaunchError
 
 if TYPE_CHECKING:
-    from launchkit.description.context import LaunchContext
+    from launchkit.description.launch_context import LaunchContext
     from launchkit.errors import Location
 
 

@@ -10,7 +10,7 @@ from launchkit.description.truth import CONDITION_EXPECTED, condition_value
 from launchkit.errors import Location, RuntimeLaunchError
 
 if TYPE_CHECKING:
-    from launchkit.description.context import LaunchContext
+    from launchkit.description.launch_context import LaunchContext
 
 
 @dataclass(frozen=True)

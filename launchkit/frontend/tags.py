@@ -24,7 +24,7 @@ from launchkit.description.actions import (
     UnsetEnv,
 )
 from launchkit.description.actions.log import LEVELS
-from launchkit.description.process import OUTPUT_MODES
+from launchkit.description.process_spec import OUTPUT_MODES
 from launchkit.description.substitutions.base import Text
 from launchkit.frontend.registry import tag
 

@@ -27,7 +27,7 @@ import tempfile
 from dataclasses import dataclass, field
 from typing import Any, Protocol
 
-from launchkit.description.process import OUTPUT_MODES, ProcessSpec
+from launchkit.description.process_spec import OUTPUT_MODES, ProcessSpec
 from launchkit.runtime.process import ManagedProcess, State
 from launchkit.runtime.supervisor_client import MAX_PACKET, SOCKET_ENV
 

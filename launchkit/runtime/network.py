@@ -5,7 +5,7 @@ from __future__ import annotations
 from typing import TYPE_CHECKING, Any, Protocol
 
 if TYPE_CHECKING:
-    from launchkit.description.context import Runtime
+    from launchkit.description.launch_context import Runtime
 
 ROUTER_ENV = "LAUNCHKIT_ROUTER"
 

@@ -19,7 +19,7 @@ import signal
 import subprocess
 from dataclasses import dataclass, field
 
-from launchkit.description.process import ProcessSpec
+from launchkit.description.process_spec import ProcessSpec
 
 
 class State(enum.Enum):

@@ -6,11 +6,11 @@ import shlex
 from dataclasses import dataclass, field
 from typing import TYPE_CHECKING
 
-from launchkit.description.process import ProcessSpec
+from launchkit.description.process_spec import ProcessSpec
 
 if TYPE_CHECKING:
     from launchkit.description.actions.timer import Timer
-    from launchkit.description.context import LaunchContext, Snapshot
+    from launchkit.description.launch_context import LaunchContext, Snapshot
 
 
 @dataclass

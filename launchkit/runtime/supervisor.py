@@ -21,7 +21,7 @@ import time
 from collections.abc import Callable
 from typing import TYPE_CHECKING
 
-from launchkit.description.process import ProcessSpec
+from launchkit.description.process_spec import ProcessSpec
 from launchkit.errors import LaunchFileError, LaunchkitError
 from launchkit.runtime.child_requests import ChildRequests, RequestError
 from launchkit.runtime.hooks import SupervisorHooks
@@ -31,7 +31,7 @@ from launchkit.runtime.process import ManagedProcess, State, describe_exit
 
 if TYPE_CHECKING:
     from launchkit.description.actions.timer import Timer
-    from launchkit.description.context import LaunchContext, Snapshot
+    from launchkit.description.launch_context import LaunchContext, Snapshot
     from launchkit.description.launch_description import LaunchDescription
     from launchkit.runtime.network import NodeNetwork
 

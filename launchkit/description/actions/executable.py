@@ -10,14 +10,14 @@ from typing import TYPE_CHECKING
 
 from launchkit.description.actions.base import Action, typed_bool, typed_float, typed_int
 from launchkit.description.command_line import split_command
-from launchkit.description.process import OUTPUT_MODES, ProcessSpec
+from launchkit.description.process_spec import OUTPUT_MODES, ProcessSpec
 from launchkit.description.substitutions.base import Value, perform
 from launchkit.description.truth import condition_value
 from launchkit.errors import Location, RuntimeLaunchError
 
 if TYPE_CHECKING:
     from launchkit.description.conditions import Condition
-    from launchkit.description.context import LaunchContext
+    from launchkit.description.launch_context import LaunchContext
 
 ON_EXIT = ("shutdown",)
 

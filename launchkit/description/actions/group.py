@@ -7,13 +7,13 @@ from dataclasses import dataclass
 from typing import TYPE_CHECKING
 
 from launchkit.description.actions.base import Action
-from launchkit.description.context import Scope
+from launchkit.description.launch_context import Scope
 from launchkit.description.substitutions.base import Value, perform
 from launchkit.errors import Location
 
 if TYPE_CHECKING:
     from launchkit.description.conditions import Condition
-    from launchkit.description.context import LaunchContext
+    from launchkit.description.launch_context import LaunchContext
 
 
 @dataclass(frozen=True)

@@ -13,7 +13,7 @@ from launchkit.errors import Location, RuntimeLaunchError
 
 if TYPE_CHECKING:
     from launchkit.description.conditions import Condition
-    from launchkit.description.context import LaunchContext
+    from launchkit.description.launch_context import LaunchContext
 
 
 @dataclass(frozen=True)

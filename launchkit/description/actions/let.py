@@ -10,7 +10,7 @@ from launchkit.errors import Location
 
 if TYPE_CHECKING:
     from launchkit.description.conditions import Condition
-    from launchkit.description.context import LaunchContext
+    from launchkit.description.launch_context import LaunchContext
 
 
 class SetConfiguration(Action):

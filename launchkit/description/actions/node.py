@@ -21,13 +21,13 @@ from launchkit.description.actions.parameters import (
 )
 from launchkit.description.actions.ros_scope import NAMESPACE_CONFIGURATION, join_namespace
 from launchkit.description.command_line import split_command
-from launchkit.description.process import ProcessSpec
+from launchkit.description.process_spec import ProcessSpec
 from launchkit.description.substitutions.base import Value, perform
 from launchkit.errors import Location
 
 if TYPE_CHECKING:
     from launchkit.description.conditions import Condition
-    from launchkit.description.context import LaunchContext
+    from launchkit.description.launch_context import LaunchContext
 
 
 @dataclass(frozen=True)

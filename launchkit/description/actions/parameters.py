@@ -10,7 +10,7 @@ from launchkit.description.substitutions.base import Value, perform
 from launchkit.errors import Location, RuntimeLaunchError
 
 if TYPE_CHECKING:
-    from launchkit.description.context import LaunchContext
+    from launchkit.description.launch_context import LaunchContext
 
 PARAM_TYPES = (
     "str",

@@ -8,7 +8,7 @@ from typing import TYPE_CHECKING, ClassVar
 from launchkit.errors import LaunchFileError, LaunchkitError, Location, RuntimeLaunchError
 
 if TYPE_CHECKING:
-    from launchkit.description.context import LaunchContext
+    from launchkit.description.launch_context import LaunchContext
 
 
 class Substitution:

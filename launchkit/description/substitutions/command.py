@@ -9,7 +9,7 @@ from typing import TYPE_CHECKING
 from launchkit.description.substitutions.base import Call
 
 if TYPE_CHECKING:
-    from launchkit.description.context import LaunchContext
+    from launchkit.description.launch_context import LaunchContext
 
 ON_STDERR = ("fail", "ignore", "warn", "capture")
 

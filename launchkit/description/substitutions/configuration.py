@@ -11,7 +11,7 @@ from typing import TYPE_CHECKING
 from launchkit.description.substitutions.base import Call
 
 if TYPE_CHECKING:
-    from launchkit.description.context import LaunchContext
+    from launchkit.description.launch_context import LaunchContext
 
 
 class Var(Call):

@@ -15,7 +15,7 @@ from typing import TYPE_CHECKING, Any
 from launchkit.description.substitutions.base import Call
 
 if TYPE_CHECKING:
-    from launchkit.description.context import LaunchContext
+    from launchkit.description.launch_context import LaunchContext
 
 _SAFE_BUILTINS: dict[str, Any] = {
     name: getattr(builtins, name)

@@ -9,7 +9,7 @@ from launchkit.description.substitutions.base import Call
 from launchkit.description.truth import BOOL_EXPECTED, bool_text, bool_value
 
 if TYPE_CHECKING:
-    from launchkit.description.context import LaunchContext
+    from launchkit.description.launch_context import LaunchContext
 
 
 class _Boolean(Call):

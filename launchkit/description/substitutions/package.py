@@ -9,7 +9,7 @@ from launchkit.description.substitutions.base import Call
 from launchkit.errors import PackageNotFoundError
 
 if TYPE_CHECKING:
-    from launchkit.description.context import LaunchContext
+    from launchkit.description.launch_context import LaunchContext
 
 
 class FindPkgShare(Call):

@@ -12,8 +12,8 @@ from typing import Any
 from launchkit.description import actions as lk
 from launchkit.description.actions.base import Action
 from launchkit.description.conditions import Condition
-from launchkit.description.context import LaunchContext
-from launchkit.description.process import ProcessSpec
+from launchkit.description.launch_context import LaunchContext
+from launchkit.description.process_spec import ProcessSpec
 from launchkit.description.substitutions import And as AndSub
 from launchkit.description.substitutions import Anon as AnonSub
 from launchkit.description.substitutions import (

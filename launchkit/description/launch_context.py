@@ -23,7 +23,7 @@ from launchkit.packages import PackageIndex
 if TYPE_CHECKING:
     from launchkit.description.actions.timer import Timer
     from launchkit.description.launch_description import LaunchDescription
-    from launchkit.description.process import ProcessSpec
+    from launchkit.description.process_spec import ProcessSpec
     from launchkit.errors import Location
 
 
