@@ -11,9 +11,9 @@ from pathlib import Path
 from lxml import etree
 
 from launchkit.description.substitutions.base import Value, literal
+from launchkit.description.substitutions.grammar import parse_value
 from launchkit.description.truth import BOOL_EXPECTED, bool_value
 from launchkit.errors import LaunchFileError, Location
-from launchkit.frontend.substitution_parser import parse_value
 
 
 @dataclass

@@ -136,7 +136,7 @@ def _params_file(entry: ParamFile, context: LaunchContext) -> Path:
         )
     if not entry.allow_substs:
         return path.resolve()
-    from launchkit.frontend.substitution_parser import parse_value
+    from launchkit.description.substitutions.grammar import parse_value
 
     text = perform(parse_value(path.read_text(), Location(str(path))), context)
     return context.write_scratch_file("params_", ".yaml", text)
