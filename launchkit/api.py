@@ -9,7 +9,7 @@ from pathlib import Path
 from typing import IO
 
 from launchkit.checks import CheckedTree, check_tree, undeclared_arguments
-from launchkit.description.launch_context import LaunchContext, Runtime
+from launchkit.description.launch_context import LaunchContext, Runner
 from launchkit.errors import PackageNotFoundError
 from launchkit.frontend.xml_parser import XmlParser
 from launchkit.packages import PackageIndex
@@ -57,7 +57,7 @@ def check(
 
 
 def _context(
-    runtime: Runtime,
+    runner: Runner,
     arguments: Mapping[str, str],
     packages: PackageIndex,
     parser: XmlParser,
@@ -73,7 +73,7 @@ def _context(
 
     return LaunchContext(
         packages=packages,
-        runtime=runtime,
+        runner=runner,
         loader=parser.load,
         environment=dict(os.environ),
         log_dir=run_dir,

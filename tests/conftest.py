@@ -75,7 +75,7 @@ def evaluate_xml(tmp_path: Path) -> EvaluateXml:
         recorder = Recorder()
         context = LaunchContext(
             packages=index,
-            runtime=recorder,
+            runner=recorder,
             loader=parser.load,
             environment=dict(env if env is not None else {"PATH": "/usr/bin:/bin"}),
             log_dir=lambda: tmp_path / "log",

@@ -3,7 +3,11 @@
 A :class:`Scope` holds what ``<group>`` pushes and pops: launch configurations (including
 ``ros_namespace``), the environment, global ROS parameters and remaps. :class:`LaunchContext`
 adds what lives for the whole run: the package index, anonymous names, the log directory, the
-launch file being executed, and the :class:`Runtime` that starts processes and timers.
+launch file being executed, and the :class:`Runner` that starts processes and timers.
+
+This module is the bottom of the description package: it knows actions, timers and loaded
+launch files only by the protocols below (what it hands around), so nothing it imports
+imports it back.
 """
 
 from __future__ import annotations
@@ -12,7 +16,7 @@ import copy
 import os
 import shutil
 import tempfile
-from collections.abc import Callable, Iterator
+from collections.abc import Callable, Iterator, Sequence
 from contextlib import contextmanager
 from dataclasses import dataclass, field
 from pathlib import Path
@@ -21,10 +25,8 @@ from typing import TYPE_CHECKING, Protocol
 from launchkit.packages import PackageIndex
 
 if TYPE_CHECKING:
-    from launchkit.description.actions.timer import Timer
-    from launchkit.description.launch_description import LaunchDescription
     from launchkit.description.process_spec import ProcessSpec
-    from launchkit.errors import Location
+    from launchkit.errors import LaunchkitError, Location
 
 
 @dataclass
@@ -42,13 +44,56 @@ class Scope:
         return copy.deepcopy(self)
 
 
-class Runtime(Protocol):
-    """What executing actions asks of whoever runs them (the supervisor, or a recorder)."""
+class Visitable(Protocol):
+    """An action as the context sees it (:class:`launchkit.description.actions.base.Action`)."""
+
+    def visit(self, context: LaunchContext) -> None:
+        """Run the action in ``context`` (unless its condition says not to)."""
+
+
+class DelayedActions(Protocol):
+    """Actions to run later, in a captured scope (a ``<timer>``)."""
+
+    @property
+    def actions(self) -> Sequence[Visitable]:
+        """What runs when the delay is over."""
+
+    @property
+    def cancel_on_shutdown(self) -> bool:
+        """Whether a shutdown drops them before they run."""
+
+
+class RequiredArgument(Protocol):
+    """An ``<arg>`` without a default, as an include checks it."""
+
+    @property
+    def name(self) -> str:
+        """The argument's name."""
+
+    def missing_error(self) -> LaunchkitError:
+        """The error for the argument not being given."""
+
+
+class LoadedFile(Protocol):
+    """A loaded launch file, as ``<include>`` runs it
+    (:class:`launchkit.description.launch_description.LaunchDescription`)."""
+
+    @property
+    def actions(self) -> Sequence[Visitable]:
+        """The file's actions in document order."""
+
+    def required_arguments(self) -> Sequence[RequiredArgument]:
+        """The arguments the file needs from its includer."""
+
+
+class Runner(Protocol):
+    """Whoever runs the launch, as executing actions sees it: the supervisor, or the recorder
+    behind ``--print``."""
 
     def start_process(self, spec: ProcessSpec) -> None:
         """Start (or, while recording, list) a process."""
 
-    def schedule_timer(self, period: float, timer: Timer, snapshot: Snapshot) -> None:
+    def schedule_timer(self, period: float, timer: DelayedActions, snapshot: Snapshot) -> None:
         """Run the timer's actions after ``period`` seconds in the captured scope."""
 
     def request_shutdown(self, reason: str) -> None:
@@ -66,7 +111,8 @@ class Snapshot:
     current_file: Path | None
 
 
-Loader = Callable[[Path, "Location | None"], "LaunchDescription"]
+#: Loads the launch file at a path (the location is the ``<include>`` that asks, for errors).
+Loader = Callable[[Path, "Location | None"], LoadedFile]
 
 
 class LaunchContext:
@@ -76,14 +122,14 @@ class LaunchContext:
         self,
         *,
         packages: PackageIndex,
-        runtime: Runtime,
+        runner: Runner,
         loader: Loader,
         environment: dict[str, str],
         log_dir: Callable[[], Path],
         configurations: dict[str, str] | None = None,
     ) -> None:
         self.packages = packages
-        self.runtime = runtime
+        self.runner = runner
         self.loader = loader
         self.initial_environment = dict(environment)
         self.scope = Scope(configurations=dict(configurations or {}), environment=environment)
@@ -124,8 +170,8 @@ class LaunchContext:
             self._scratch = None
 
     def log(self, level: str, message: str, logger: str = "launch") -> None:
-        """Print a launch line through the runtime."""
-        self.runtime.log(level, logger, message)
+        """Print a launch line through the runner."""
+        self.runner.log(level, logger, message)
 
     @contextmanager
     def scoped(self, scope: Scope | None = None) -> Iterator[None]:

@@ -4,11 +4,10 @@ from __future__ import annotations
 
 from dataclasses import dataclass, field
 from pathlib import Path
-from typing import TYPE_CHECKING
 
-if TYPE_CHECKING:
-    from launchkit.description.actions.arg import DeclareArgument
-    from launchkit.description.actions.base import Action
+from launchkit.description.actions.arg import DeclareArgument
+from launchkit.description.actions.base import Action
+from launchkit.description.actions.group import Group
 
 
 @dataclass
@@ -21,15 +20,10 @@ class LaunchDescription:
 
     def declared_arguments(self) -> list[DeclareArgument]:
         """Every ``<arg>`` of this file (inside groups too), in document order."""
-        from launchkit.description.actions.arg import DeclareArgument
-
         return [a for a in walk(self.actions) if isinstance(a, DeclareArgument)]
 
     def required_arguments(self) -> list[DeclareArgument]:
         """``<arg>``s without a default that are reached unconditionally at the top level."""
-        from launchkit.description.actions.arg import DeclareArgument
-        from launchkit.description.actions.group import Group
-
         found: list[DeclareArgument] = []
         pending = list(self.actions)
         while pending:

@@ -5,7 +5,7 @@ from __future__ import annotations
 from typing import TYPE_CHECKING, Any, Protocol
 
 if TYPE_CHECKING:
-    from launchkit.description.launch_context import Runtime
+    from launchkit.description.launch_context import Runner
 
 ROUTER_ENV = "LAUNCHKIT_ROUTER"
 
@@ -27,12 +27,12 @@ class NodeNetwork:
         self.endpoint = endpoint
         self._router: RouterHandle | None = None
 
-    def ensure(self, runtime: Runtime) -> dict[str, str]:
+    def ensure(self, runner: Runner) -> dict[str, str]:
         """Environment additions for a node process (starting the router if needed)."""
         if self._router is None:
             self._router = _start_router(self.endpoint)
             verb = "started" if self._router.hosted else "joined"
-            runtime.log("INFO", "launch", f"{verb} the ROS router at {self._router.endpoint}")
+            runner.log("INFO", "launch", f"{verb} the ROS router at {self._router.endpoint}")
         return {ROUTER_ENV: self._router.endpoint}
 
     def known(self) -> dict[str, str]:

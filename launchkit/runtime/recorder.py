@@ -9,8 +9,7 @@ from typing import TYPE_CHECKING
 from launchkit.description.process_spec import ProcessSpec
 
 if TYPE_CHECKING:
-    from launchkit.description.actions.timer import Timer
-    from launchkit.description.launch_context import LaunchContext, Snapshot
+    from launchkit.description.launch_context import DelayedActions, LaunchContext, Snapshot
 
 
 @dataclass
@@ -26,7 +25,7 @@ class Recorded:
 
 
 class Recorder:
-    """The :class:`Runtime` for ``--print``: timers are evaluated at once, in their scope."""
+    """The :class:`Runner` for ``--print``: timers are evaluated at once, in their scope."""
 
     def __init__(self) -> None:
         self.context: LaunchContext | None = None
@@ -37,7 +36,7 @@ class Recorder:
         """Record the process."""
         self._target.append(Recorded("process", spec=spec))
 
-    def schedule_timer(self, period: float, timer: Timer, snapshot: Snapshot) -> None:
+    def schedule_timer(self, period: float, timer: DelayedActions, snapshot: Snapshot) -> None:
         """Record the timer and what it would do when it fires."""
         item = Recorded("timer", delay=period)
         self._target.append(item)

@@ -30,8 +30,7 @@ from launchkit.runtime.output import Output
 from launchkit.runtime.process import ManagedProcess, State, describe_exit
 
 if TYPE_CHECKING:
-    from launchkit.description.actions.timer import Timer
-    from launchkit.description.launch_context import LaunchContext, Snapshot
+    from launchkit.description.launch_context import DelayedActions, LaunchContext, Snapshot
     from launchkit.description.launch_description import LaunchDescription
     from launchkit.runtime.network import NodeNetwork
 
@@ -41,7 +40,7 @@ _POLL_INTERVAL = 0.05  # only when the kernel has no pidfd_open
 
 
 class Supervisor:
-    """Runs a launch description and supervises what it starts (the :class:`Runtime`)."""
+    """Runs a launch description and supervises what it starts (the :class:`Runner`)."""
 
     def __init__(
         self,
@@ -60,7 +59,7 @@ class Supervisor:
         self.shutting_down = False
         self._context: LaunchContext | None = None
         self._pending: list[ProcessSpec] | None = None
-        self._timers: list[tuple[float, int, Timer, Snapshot]] = []
+        self._timers: list[tuple[float, int, DelayedActions, Snapshot]] = []
         self._timer_seq = 0
         self._interrupts = 0
         self._lingering: set[int] = set()
@@ -71,7 +70,7 @@ class Supervisor:
         self._requests: ChildRequests | None = None
         self.on_started: Callable[[ManagedProcess], None] | None = None
 
-    # -- the Runtime protocol (what actions call) ---------------------------------------------
+    # -- the Runner protocol (what actions call) ----------------------------------------------
 
     def start_process(self, spec: ProcessSpec) -> None:
         """Start ``spec`` now, or after the first pass when the launch is starting up."""
@@ -82,7 +81,7 @@ class Supervisor:
         else:
             self._start_new(spec)
 
-    def schedule_timer(self, period: float, timer: Timer, snapshot: Snapshot) -> None:
+    def schedule_timer(self, period: float, timer: DelayedActions, snapshot: Snapshot) -> None:
         """Fire ``timer`` after ``period`` seconds."""
         self._timer_seq += 1
         heapq.heappush(self._timers, (self.clock() + period, self._timer_seq, timer, snapshot))
@@ -192,7 +191,7 @@ class Supervisor:
                 process.respawn_at = None
                 self._spawn(process)
 
-    def _fire(self, timer: Timer, snapshot: Snapshot) -> None:
+    def _fire(self, timer: DelayedActions, snapshot: Snapshot) -> None:
         context = self._context
         assert context is not None
         try:

@@ -187,4 +187,4 @@ class ExecuteProcess(Action):
 
     def execute(self, context: LaunchContext) -> None:
         """Hand the process to the runtime."""
-        context.runtime.start_process(self.evaluate(context))
+        context.runner.start_process(self.evaluate(context))

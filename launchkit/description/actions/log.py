@@ -52,4 +52,4 @@ class Shutdown(Action):
 
     def execute(self, context: LaunchContext) -> None:
         """Ask the runtime to shut down."""
-        context.runtime.request_shutdown(perform(self.reason, context) or "<shutdown> reached")
+        context.runner.request_shutdown(perform(self.reason, context) or "<shutdown> reached")

@@ -132,4 +132,4 @@ class Node(Action):
 
     def execute(self, context: LaunchContext) -> None:
         """Hand the node's process to the runtime."""
-        context.runtime.start_process(self.evaluate(context))
+        context.runner.start_process(self.evaluate(context))

@@ -44,4 +44,4 @@ class Timer(Action):
             raise RuntimeLaunchError(
                 f"timer period is {period}", self.location, expected="a period >= 0"
             )
-        context.runtime.schedule_timer(period, self, context.snapshot())
+        context.runner.schedule_timer(period, self, context.snapshot())
