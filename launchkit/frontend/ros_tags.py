@@ -5,7 +5,7 @@ from __future__ import annotations
 from typing import TYPE_CHECKING
 
 from launchkit.description.actions import (
-    Node,
+    ExecuteNode,
     ParamFile,
     ParamGroup,
     ParamValue,
@@ -86,7 +86,7 @@ def parse_node(entity: Entity, parser: XmlParser) -> Action:
     node_name = entity.value("name")
     options = parse_process_options(entity)
     options.name = None  # `name` is the ROS node name here, not the process label
-    return Node(
+    return ExecuteNode(
         entity.value("pkg"),
         entity.required("exec", 'exec="EXECUTABLE"'),
         options,

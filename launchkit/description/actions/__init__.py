@@ -10,7 +10,7 @@ from launchkit.description.actions.group import Group, Keep, Reset
 from launchkit.description.actions.include import Include, IncludeArg
 from launchkit.description.actions.let import SetConfiguration
 from launchkit.description.actions.log import Log, Shutdown
-from launchkit.description.actions.node import Node, Remap
+from launchkit.description.actions.node import ExecuteNode, Remap
 from launchkit.description.actions.parameters import ParamFile, ParamGroup, ParamValue
 from launchkit.description.actions.ros_scope import (
     PushRosNamespace,
@@ -25,13 +25,13 @@ __all__ = [
     "Action",
     "AppendEnv",
     "DeclareArgument",
+    "ExecuteNode",
     "ExecuteProcess",
     "Group",
     "Include",
     "IncludeArg",
     "Keep",
     "Log",
-    "Node",
     "ParamFile",
     "ParamGroup",
     "ParamValue",

@@ -38,7 +38,7 @@ class Remap:
     dst: Value
 
 
-class Node(Action):
+class ExecuteNode(Action):
     """Run executable EXEC of package PKG as a ROS node."""
 
     TAG = "node"

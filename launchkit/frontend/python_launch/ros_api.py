@@ -79,7 +79,7 @@ def _dict_entries(values: Mapping[Any, Any]) -> list[ParamEntry]:
     return entries
 
 
-class Node(lk.Node):
+class Node(lk.ExecuteNode):
     """``launch_ros.actions.Node``."""
 
     def __init__(
