@@ -153,7 +153,7 @@ def main() -> None:
         print(f"SIGINT to exit with 10 children: {stop * 1000:.0f} ms")
 
         from launchkit.checks import check_tree
-        from launchkit.frontend.xml_parser import XmlParser
+        from launchkit.frontend.xml.parser import XmlParser
         from launchkit.packages import PackageIndex
 
         body = "\n".join(

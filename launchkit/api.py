@@ -11,7 +11,7 @@ from typing import IO
 from launchkit.checks import CheckedTree, check_tree, undeclared_arguments
 from launchkit.description.launch_context import LaunchContext, Runner
 from launchkit.errors import PackageNotFoundError
-from launchkit.frontend.xml_parser import XmlParser
+from launchkit.frontend.xml.parser import XmlParser
 from launchkit.packages import PackageIndex
 from launchkit.runtime.hooks import SupervisorHooks
 

@@ -25,7 +25,7 @@ from launchkit.description.substitutions import (
 )
 from launchkit.description.substitutions.base import literal
 from launchkit.errors import LaunchArgumentError, LaunchFileError, PackageNotFoundError
-from launchkit.frontend.xml_parser import XmlParser
+from launchkit.frontend.xml.parser import XmlParser
 from launchkit.packages import PackageIndex
 
 

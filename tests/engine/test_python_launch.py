@@ -8,7 +8,7 @@ from pathlib import Path
 import pytest
 
 from launchkit.errors import LaunchFileError, LaunchkitError
-from launchkit.frontend.python_launch import launch_api
+from launchkit.frontend.python import launch_api
 from launchkit.packages import PackageIndex, PythonPackage
 from tests.conftest import EvaluateXml
 

@@ -10,6 +10,6 @@ errors as XML. Only the declarative part of the API is covered (see ``api.py``);
 
 from __future__ import annotations
 
-from launchkit.frontend.python_launch.loader import load_python_launch
+from launchkit.frontend.python.loader import load_python_launch
 
 __all__ = ["load_python_launch"]

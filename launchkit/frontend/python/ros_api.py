@@ -11,8 +11,8 @@ from launchkit.description import actions as lk
 from launchkit.description.actions.parameters import ParamEntry
 from launchkit.description.conditions import Condition
 from launchkit.description.substitutions import ExecInPkg, FindPkgPrefix, FindPkgShare
-from launchkit.frontend.python_launch.launch_api import _argv_text, process_options
-from launchkit.frontend.python_launch.values import (
+from launchkit.frontend.python.launch_api import _argv_text, process_options
+from launchkit.frontend.python.values import (
     SubstitutionLike,
     here,
     optional_value,

@@ -9,9 +9,9 @@ from lxml import etree
 
 from launchkit.description.launch_description import LaunchDescription
 from launchkit.errors import LaunchFileError, Location
-from launchkit.frontend import tags as _tags  # noqa: F401  (registers the tag parsers)
-from launchkit.frontend.entity import Entity, SourceFile
-from launchkit.frontend.registry import TAGS, parse_condition
+from launchkit.frontend.action_parser import TAGS, parse_condition
+from launchkit.frontend.tags import launch as _tags  # noqa: F401  (registers the tag parsers)
+from launchkit.frontend.xml.entity import Entity, SourceFile
 
 if TYPE_CHECKING:
     from launchkit.description.actions.base import Action
@@ -32,7 +32,7 @@ class XmlParser:
         if cached is not None:
             return cached
         if path.suffix == ".py" and path.is_file():
-            from launchkit.frontend.python_launch import load_python_launch
+            from launchkit.frontend.python import load_python_launch
 
             description = load_python_launch(path, included_from)
             self._cache[path] = description

@@ -17,13 +17,13 @@ from launchkit.description.actions import (
     SetUseSimTime,
 )
 from launchkit.description.actions.parameters import PARAM_TYPES
-from launchkit.frontend.registry import tag
-from launchkit.frontend.tags import leaf, only_children, parse_process_options
+from launchkit.frontend.action_parser import tag
+from launchkit.frontend.tags.launch import leaf, only_children, parse_process_options
 
 if TYPE_CHECKING:
     from launchkit.description.actions.base import Action
-    from launchkit.frontend.entity import Entity
-    from launchkit.frontend.xml_parser import XmlParser
+    from launchkit.frontend.xml.entity import Entity
+    from launchkit.frontend.xml.parser import XmlParser
 
 
 def parse_param(entity: Entity) -> ParamValue | ParamGroup | ParamFile:

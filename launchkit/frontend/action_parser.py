@@ -13,8 +13,8 @@ from launchkit.description.conditions import Condition
 
 if TYPE_CHECKING:
     from launchkit.description.actions.base import Action
-    from launchkit.frontend.entity import Entity
-    from launchkit.frontend.xml_parser import XmlParser
+    from launchkit.frontend.xml.entity import Entity
+    from launchkit.frontend.xml.parser import XmlParser
 
 TagParser = Callable[["Entity", "XmlParser"], "Action"]
 

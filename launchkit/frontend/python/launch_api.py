@@ -33,7 +33,7 @@ from launchkit.description.substitutions import (
 from launchkit.description.substitutions import Or as OrSub
 from launchkit.description.substitutions.base import Substitution, perform
 from launchkit.errors import PackageNotFoundError
-from launchkit.frontend.python_launch.values import (
+from launchkit.frontend.python.values import (
     SubstitutionLike,
     here,
     optional_value,

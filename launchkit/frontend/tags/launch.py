@@ -1,5 +1,5 @@
 """Parsers for the launch tags ROS 2's ``launch`` package defines (the ROS tags are in
-``ros_tags.py``)."""
+``ros.py``)."""
 
 from __future__ import annotations
 
@@ -26,12 +26,12 @@ from launchkit.description.actions import (
 from launchkit.description.actions.log import LEVELS
 from launchkit.description.process_spec import OUTPUT_MODES
 from launchkit.description.substitutions.base import Text
-from launchkit.frontend.registry import tag
+from launchkit.frontend.action_parser import tag
 
 if TYPE_CHECKING:
     from launchkit.description.actions.base import Action
-    from launchkit.frontend.entity import Entity
-    from launchkit.frontend.xml_parser import XmlParser
+    from launchkit.frontend.xml.entity import Entity
+    from launchkit.frontend.xml.parser import XmlParser
 
 
 def only_children(entity: Entity, allowed: tuple[str, ...]) -> list[Entity]:
@@ -223,4 +223,4 @@ def parse_shutdown(entity: Entity, parser: XmlParser) -> Action:
     return Shutdown(entity.value("reason") or (Text(""),))
 
 
-from launchkit.frontend import ros_tags as _ros_tags  # noqa: E402, F401  (registers ROS tags)
+from launchkit.frontend.tags import ros as _ros_tags  # noqa: E402, F401  (registers ROS tags)

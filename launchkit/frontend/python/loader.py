@@ -12,10 +12,10 @@ from pathlib import Path
 from launchkit.description.actions.base import Action
 from launchkit.description.launch_description import LaunchDescription
 from launchkit.errors import LaunchFileError, LaunchkitError, Location
-from launchkit.frontend.python_launch import launch_api as L
-from launchkit.frontend.python_launch import ros_api as R
-from launchkit.frontend.python_launch import values
-from launchkit.frontend.python_launch.values import unsupported
+from launchkit.frontend.python import launch_api as L
+from launchkit.frontend.python import ros_api as R
+from launchkit.frontend.python import values
+from launchkit.frontend.python.values import unsupported
 from launchkit.packages import PackageIndex
 
 
