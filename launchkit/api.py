@@ -11,7 +11,7 @@ from typing import IO
 from launchkit.checks import CheckedTree, check_tree, undeclared_arguments
 from launchkit.description.launch_context import LaunchContext, Runner
 from launchkit.errors import PackageNotFoundError
-from launchkit.frontend.xml.parser import XmlParser
+from launchkit.frontend.loader import LaunchLoader
 from launchkit.packages import PackageIndex
 from launchkit.runtime.hooks import SupervisorHooks
 
@@ -50,17 +50,17 @@ def check(
     arguments: Mapping[str, str] | None = None,
     *,
     packages: PackageIndex | None = None,
-    parser: XmlParser | None = None,
+    loader: LaunchLoader | None = None,
 ) -> CheckedTree:
     """Parse and check ``path`` (and its static includes) without running anything."""
-    return check_tree(path, arguments or {}, parser or XmlParser(), packages or PackageIndex())
+    return check_tree(path, arguments or {}, loader or LaunchLoader(), packages or PackageIndex())
 
 
 def _context(
     runner: Runner,
     arguments: Mapping[str, str],
     packages: PackageIndex,
-    parser: XmlParser,
+    loader: LaunchLoader,
     log_dir: Path | None,
 ) -> LaunchContext:
     def run_dir() -> Path:
@@ -74,7 +74,7 @@ def _context(
     return LaunchContext(
         packages=packages,
         runner=runner,
-        loader=parser.load,
+        loader=loader.load,
         environment=dict(os.environ),
         log_dir=run_dir,
         configurations=dict(arguments),
@@ -86,10 +86,10 @@ def describe(path: Path, arguments: Mapping[str, str] | None = None) -> str:
     from launchkit.runtime.recorder import Recorder, render
 
     arguments = arguments or {}
-    packages, parser = PackageIndex(), XmlParser()
-    tree = check_tree(path, arguments, parser, packages)
+    packages, loader = PackageIndex(), LaunchLoader()
+    tree = check_tree(path, arguments, loader, packages)
     recorder = Recorder()
-    context = _context(recorder, arguments, packages, parser, None)
+    context = _context(recorder, arguments, packages, loader, None)
     recorder.context = context
     try:
         with context.in_file(tree.top.path):
@@ -102,7 +102,7 @@ def describe(path: Path, arguments: Mapping[str, str] | None = None) -> str:
 
 def show_arguments(path: Path) -> str:
     """The arguments ``path`` declares, with defaults, descriptions and choices."""
-    description = check_tree(path, None, XmlParser(), PackageIndex()).top
+    description = check_tree(path, None, LaunchLoader(), PackageIndex()).top
     lines = ["Arguments (pass arguments as '<name>:=<value>'):"]
     declared = description.declared_arguments()
     if not declared:
@@ -140,8 +140,8 @@ def run(
     from launchkit.runtime.supervisor import Supervisor
 
     arguments = dict(arguments or {})
-    packages, parser = PackageIndex(), XmlParser()
-    tree = check_tree(path, arguments, parser, packages)
+    packages, loader = PackageIndex(), LaunchLoader()
+    tree = check_tree(path, arguments, loader, packages)
     output = Output(stream or sys.stdout)
     run_dir = create_run_dir(os.environ)
     output.open_logs(run_dir)
@@ -154,7 +154,7 @@ def run(
             f"{path.name} (or the files it includes statically)",
         )
     supervisor = Supervisor(output, network=NodeNetwork(router), hooks=hooks)
-    context = _context(supervisor, arguments, packages, parser, run_dir)
+    context = _context(supervisor, arguments, packages, loader, run_dir)
     try:
         return supervisor.run(tree.top, context)
     finally:

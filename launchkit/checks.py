@@ -25,7 +25,7 @@ from launchkit.description.substitutions import (
 )
 from launchkit.description.substitutions.base import literal
 from launchkit.errors import LaunchArgumentError, LaunchFileError, PackageNotFoundError
-from launchkit.frontend.xml.parser import XmlParser
+from launchkit.frontend.loader import LaunchLoader
 from launchkit.packages import PackageIndex
 
 
@@ -56,12 +56,12 @@ def parse_launch_arguments(items: list[str]) -> dict[str, str]:
 def check_tree(
     path: Path,
     arguments: Mapping[str, str] | None,
-    parser: XmlParser,
+    loader: LaunchLoader,
     packages: PackageIndex,
 ) -> CheckedTree:
     """Parse ``path`` and its static includes and check ``arguments`` (unless None, as for
     ``--show-args``); raise on the first error."""
-    tree = CheckedTree(parser.load(path))
+    tree = CheckedTree(loader.load(path))
     pending = [tree.top]
     while pending:
         description = pending.pop()
@@ -79,7 +79,7 @@ def check_tree(
                         expected="a path to a launch file",
                     )
                 continue  # conditional: reported if and when the include runs
-            child = parser.load(included, action.location)
+            child = loader.load(included, action.location)
             tree.files[included] = child
             pending.append(child)
     if arguments is not None:

@@ -11,7 +11,7 @@ import pytest
 from launchkit.checks import check_tree
 from launchkit.description.launch_context import LaunchContext
 from launchkit.description.process_spec import ProcessSpec
-from launchkit.frontend.xml.parser import XmlParser
+from launchkit.frontend.loader import LaunchLoader
 from launchkit.packages import PackageIndex
 from launchkit.runtime.recorder import Recorded, Recorder
 
@@ -69,14 +69,14 @@ def evaluate_xml(tmp_path: Path) -> EvaluateXml:
     ) -> Evaluated:
         path = tmp_path / name
         path.write_text(xml)
-        parser = XmlParser()
+        loader = LaunchLoader()
         index = packages or PackageIndex()
-        tree = check_tree(path, args or {}, parser, index)
+        tree = check_tree(path, args or {}, loader, index)
         recorder = Recorder()
         context = LaunchContext(
             packages=index,
             runner=recorder,
-            loader=parser.load,
+            loader=loader.load,
             environment=dict(env if env is not None else {"PATH": "/usr/bin:/bin"}),
             log_dir=lambda: tmp_path / "log",
             configurations=dict(args or {}),

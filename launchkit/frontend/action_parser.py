@@ -1,37 +1,65 @@
-"""The tag registry: which parser turns which XML tag into an action.
+"""Entities to actions, the same for every syntax: which parser reads which tag.
 
-Every registered parser gets ``if``/``unless`` handled for it, and after it returns the
-element is checked for attributes nobody read (an unknown attribute is an error, as in ROS).
+An :class:`ActionParser` holds a table of tag parsers that the tag modules fill explicitly
+(``frontend/tags``: each has a ``register``), and does what every tag shares: ``if``/``unless``,
+the action's location, and the check that no attribute was left unread (an unknown attribute
+is an error, as in ROS).
 """
 
 from __future__ import annotations
 
 from collections.abc import Callable
-from typing import TYPE_CHECKING
 
+from launchkit.description.actions.base import Action
 from launchkit.description.conditions import Condition
+from launchkit.frontend.base_entity import Entity
 
-if TYPE_CHECKING:
-    from launchkit.description.actions.base import Action
-    from launchkit.frontend.xml.entity import Entity
-    from launchkit.frontend.xml.parser import XmlParser
+#: Parses one tag's entity into its action; the parser is there for nested actions.
+TagParser = Callable[[Entity, "ActionParser"], Action]
 
-TagParser = Callable[["Entity", "XmlParser"], "Action"]
+_ROS1_HINTS = {
+    "rosparam": 'ROS 2 has no <rosparam>; use <param from="file.yaml"/> inside <node>',
+    "machine": "ROS 2 has no <machine>",
+    "test": "ROS 2 has no <test>; see launchkit.testing",
+    "env": "use <set_env> at this level; <env> belongs inside <executable> or <node>",
+}
 
-TAGS: dict[str, TagParser] = {}
 
+class ActionParser:
+    """Parses entities of any syntax into actions with the tag parsers registered on it."""
 
-def tag(*names: str) -> Callable[[TagParser], TagParser]:
-    """Register a parser for ``names`` (a tag and its alternative spellings)."""
+    def __init__(self) -> None:
+        self._parsers: dict[str, TagParser] = {}
 
-    def register(function: TagParser) -> TagParser:
-        for name in names:
-            if name in TAGS:
-                raise ValueError(f"tag <{name}> registered twice")
-            TAGS[name] = function
-        return function
+    def register(self, name: str, parser: TagParser) -> None:
+        """Have ``parser`` read tag ``name``; a tag registered twice is a programming error."""
+        if name in self._parsers:
+            raise ValueError(f"tag <{name}> registered twice")
+        self._parsers[name] = parser
 
-    return register
+    def tags(self) -> list[str]:
+        """Every tag name this parser reads, sorted."""
+        return sorted(self._parsers)
+
+    def parse_actions(self, parent: Entity, skip: tuple[str, ...] = ()) -> list[Action]:
+        """The actions among ``parent``'s children (tags in ``skip`` are left to the parent)."""
+        return [self.parse_action(child) for child in parent.children() if child.tag not in skip]
+
+    def parse_action(self, entity: Entity) -> Action:
+        """One action tag, with its condition, fully checked."""
+        parse = self._parsers.get(entity.tag)
+        if parse is None:
+            raise entity.error(
+                f"unknown tag <{entity.tag}>",
+                expected="one of: " + ", ".join(self.tags()),
+                hint=_ROS1_HINTS.get(entity.tag),
+            )
+        condition = parse_condition(entity)
+        action = parse(entity, self)
+        action.condition = condition
+        action.location = entity.location
+        entity.assert_fully_read()
+        return action
 
 
 def parse_condition(entity: Entity) -> Condition | None:

@@ -26,12 +26,11 @@ from launchkit.description.actions import (
 from launchkit.description.actions.log import LEVELS
 from launchkit.description.process_spec import OUTPUT_MODES
 from launchkit.description.substitutions.base import Text
-from launchkit.frontend.action_parser import tag
 
 if TYPE_CHECKING:
     from launchkit.description.actions.base import Action
-    from launchkit.frontend.xml.entity import Entity
-    from launchkit.frontend.xml.parser import XmlParser
+    from launchkit.frontend.action_parser import ActionParser, TagParser
+    from launchkit.frontend.base_entity import Entity
 
 
 def only_children(entity: Entity, allowed: tuple[str, ...]) -> list[Entity]:
@@ -53,8 +52,7 @@ def leaf(entity: Entity) -> Entity:
     return entity
 
 
-@tag("arg")
-def parse_arg(entity: Entity, parser: XmlParser) -> Action:
+def parse_arg(entity: Entity, parser: ActionParser) -> Action:
     """``<arg name default description>`` with ``<choice value>`` children."""
     name = entity.plain("name")
     if not name:
@@ -74,8 +72,7 @@ def parse_arg(entity: Entity, parser: XmlParser) -> Action:
     )
 
 
-@tag("let")
-def parse_let(entity: Entity, parser: XmlParser) -> Action:
+def parse_let(entity: Entity, parser: ActionParser) -> Action:
     """``<let name value>``."""
     leaf(entity)
     return SetConfiguration(entity.required("name"), entity.required("value"))
@@ -91,8 +88,7 @@ def parse_keeps(entity: Entity, children: list[Entity]) -> list[Keep]:
     return keeps
 
 
-@tag("group")
-def parse_group(entity: Entity, parser: XmlParser) -> Action:
+def parse_group(entity: Entity, parser: ActionParser) -> Action:
     """``<group scoped forwarding>`` with ``<keep>`` and action children."""
     scoped = entity.static_bool("scoped", True)
     forwarding = entity.static_bool("forwarding", True)
@@ -106,14 +102,12 @@ def parse_group(entity: Entity, parser: XmlParser) -> Action:
     return Group(parser.parse_actions(entity, skip=("keep",)), scoped, forwarding, keeps)
 
 
-@tag("reset")
-def parse_reset(entity: Entity, parser: XmlParser) -> Action:
+def parse_reset(entity: Entity, parser: ActionParser) -> Action:
     """``<reset>`` with ``<keep>`` children."""
     return Reset(parse_keeps(entity, only_children(entity, ("keep",))))
 
 
-@tag("include")
-def parse_include(entity: Entity, parser: XmlParser) -> Action:
+def parse_include(entity: Entity, parser: ActionParser) -> Action:
     """``<include file>`` with ``<arg name value/>`` children."""
     args = []
     for child in only_children(entity, ("arg",)):
@@ -153,16 +147,14 @@ def parse_process_options(entity: Entity) -> ProcessOptions:
     )
 
 
-@tag("executable")
-def parse_executable(entity: Entity, parser: XmlParser) -> Action:
+def parse_executable(entity: Entity, parser: ActionParser) -> Action:
     """``<executable cmd ...>`` with ``<env>`` children."""
     only_children(entity, ("env",))
     cmd = entity.required("cmd", 'cmd="program args..."')
     return ExecuteProcess(cmd, parse_process_options(entity))
 
 
-@tag("timer")
-def parse_timer(entity: Entity, parser: XmlParser) -> Action:
+def parse_timer(entity: Entity, parser: ActionParser) -> Action:
     """``<timer period cancel_on_shutdown>`` with action children."""
     period = entity.checked("period", "ufloat")
     if period is None:
@@ -171,22 +163,19 @@ def parse_timer(entity: Entity, parser: XmlParser) -> Action:
     return Timer(period, parser.parse_actions(entity), cancel)
 
 
-@tag("set_env")
-def parse_set_env(entity: Entity, parser: XmlParser) -> Action:
+def parse_set_env(entity: Entity, parser: ActionParser) -> Action:
     """``<set_env name value>``."""
     leaf(entity)
     return SetEnv(entity.required("name"), entity.required("value"))
 
 
-@tag("unset_env")
-def parse_unset_env(entity: Entity, parser: XmlParser) -> Action:
+def parse_unset_env(entity: Entity, parser: ActionParser) -> Action:
     """``<unset_env name>``."""
     leaf(entity)
     return UnsetEnv(entity.required("name"))
 
 
-@tag("append_env")
-def parse_append_env(entity: Entity, parser: XmlParser) -> Action:
+def parse_append_env(entity: Entity, parser: ActionParser) -> Action:
     """``<append_env name value prepend separator>``."""
     leaf(entity)
     return AppendEnv(
@@ -197,15 +186,13 @@ def parse_append_env(entity: Entity, parser: XmlParser) -> Action:
     )
 
 
-@tag("reset_env")
-def parse_reset_env(entity: Entity, parser: XmlParser) -> Action:
+def parse_reset_env(entity: Entity, parser: ActionParser) -> Action:
     """``<reset_env/>``."""
     leaf(entity)
     return ResetEnv()
 
 
-@tag("log")
-def parse_log(entity: Entity, parser: XmlParser) -> Action:
+def parse_log(entity: Entity, parser: ActionParser) -> Action:
     """``<log message [level]>``."""
     leaf(entity)
     level = (entity.plain("level") or "INFO").upper()
@@ -216,11 +203,31 @@ def parse_log(entity: Entity, parser: XmlParser) -> Action:
     return Log(entity.required("message"), level)
 
 
-@tag("shutdown")
-def parse_shutdown(entity: Entity, parser: XmlParser) -> Action:
+def parse_shutdown(entity: Entity, parser: ActionParser) -> Action:
     """``<shutdown reason>``."""
     leaf(entity)
     return Shutdown(entity.value("reason") or (Text(""),))
 
 
-from launchkit.frontend.tags import ros as _ros_tags  # noqa: E402, F401  (registers ROS tags)
+#: Tag name -> parser: the launch tags.
+TAGS: dict[str, TagParser] = {
+    "arg": parse_arg,
+    "let": parse_let,
+    "group": parse_group,
+    "reset": parse_reset,
+    "include": parse_include,
+    "executable": parse_executable,
+    "timer": parse_timer,
+    "set_env": parse_set_env,
+    "unset_env": parse_unset_env,
+    "append_env": parse_append_env,
+    "reset_env": parse_reset_env,
+    "log": parse_log,
+    "shutdown": parse_shutdown,
+}
+
+
+def register(parser: ActionParser) -> None:
+    """Have ``parser`` read the launch tags."""
+    for name, parse in TAGS.items():
+        parser.register(name, parse)

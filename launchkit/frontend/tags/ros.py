@@ -17,13 +17,12 @@ from launchkit.description.actions import (
     SetUseSimTime,
 )
 from launchkit.description.actions.parameters import PARAM_TYPES
-from launchkit.frontend.action_parser import tag
 from launchkit.frontend.tags.launch import leaf, only_children, parse_process_options
 
 if TYPE_CHECKING:
     from launchkit.description.actions.base import Action
-    from launchkit.frontend.xml.entity import Entity
-    from launchkit.frontend.xml.parser import XmlParser
+    from launchkit.frontend.action_parser import ActionParser, TagParser
+    from launchkit.frontend.base_entity import Entity
 
 
 def parse_param(entity: Entity) -> ParamValue | ParamGroup | ParamFile:
@@ -72,8 +71,7 @@ def _no_file(entity: Entity, param: ParamValue | ParamGroup | ParamFile) -> Para
     return param
 
 
-@tag("node")
-def parse_node(entity: Entity, parser: XmlParser) -> Action:
+def parse_node(entity: Entity, parser: ActionParser) -> Action:
     """``<node pkg exec name namespace exec_name args ros_args ...>`` with ``<param>``,
     ``<remap>`` and ``<env>`` children."""
     children = only_children(entity, ("param", "remap", "env"))
@@ -100,36 +98,31 @@ def parse_node(entity: Entity, parser: XmlParser) -> Action:
     )
 
 
-@tag("push_ros_namespace", "push-ros-namespace")
-def parse_push_ros_namespace(entity: Entity, parser: XmlParser) -> Action:
+def parse_push_ros_namespace(entity: Entity, parser: ActionParser) -> Action:
     """``<push_ros_namespace namespace>``."""
     leaf(entity)
     return PushRosNamespace(entity.required("namespace"))
 
 
-@tag("set_parameter")
-def parse_set_parameter(entity: Entity, parser: XmlParser) -> Action:
+def parse_set_parameter(entity: Entity, parser: ActionParser) -> Action:
     """``<set_parameter name value>``."""
     leaf(entity)
     return SetParameter(entity.required("name"), entity.required("value"))
 
 
-@tag("set_parameters_from_file")
-def parse_set_parameters_from_file(entity: Entity, parser: XmlParser) -> Action:
+def parse_set_parameters_from_file(entity: Entity, parser: ActionParser) -> Action:
     """``<set_parameters_from_file filename>``."""
     leaf(entity)
     return SetParametersFromFile(entity.required("filename"))
 
 
-@tag("set_remap")
-def parse_set_remap(entity: Entity, parser: XmlParser) -> Action:
+def parse_set_remap(entity: Entity, parser: ActionParser) -> Action:
     """``<set_remap from to>``."""
     leaf(entity)
     return SetRemap(entity.required("from"), entity.required("to"))
 
 
-@tag("set_use_sim_time")
-def parse_set_use_sim_time(entity: Entity, parser: XmlParser) -> Action:
+def parse_set_use_sim_time(entity: Entity, parser: ActionParser) -> Action:
     """``<set_use_sim_time value>``."""
     leaf(entity)
     value = entity.checked("value", "bool")
@@ -138,3 +131,21 @@ def parse_set_use_sim_time(entity: Entity, parser: XmlParser) -> Action:
             "<set_use_sim_time> is missing attribute 'value'", expected='value="true"'
         )
     return SetUseSimTime(value)
+
+
+#: Tag name -> parser: the launch_ros tags.
+TAGS: dict[str, TagParser] = {
+    "node": parse_node,
+    "push_ros_namespace": parse_push_ros_namespace,
+    "push-ros-namespace": parse_push_ros_namespace,
+    "set_parameter": parse_set_parameter,
+    "set_parameters_from_file": parse_set_parameters_from_file,
+    "set_remap": parse_set_remap,
+    "set_use_sim_time": parse_set_use_sim_time,
+}
+
+
+def register(parser: ActionParser) -> None:
+    """Have ``parser`` read the launch_ros tags."""
+    for name, parse in TAGS.items():
+        parser.register(name, parse)

@@ -1,19 +1,16 @@
-"""One XML element as the tag parsers see it: typed attribute access with locations, and a
-check that no attribute or child was left unread."""
+"""One XML element as the tag parsers see it: attributes with the line and column they were
+written at (lxml gives the line; the column is found in the source text)."""
 
 from __future__ import annotations
 
 import re
-from collections.abc import Sequence
 from dataclasses import dataclass, field
 from pathlib import Path
 
 from lxml import etree
 
-from launchkit.description.substitutions.base import Value, literal
-from launchkit.description.substitutions.grammar import parse_value
-from launchkit.description.truth import BOOL_EXPECTED, bool_value
-from launchkit.errors import LaunchFileError, Location
+from launchkit.errors import Location
+from launchkit.frontend.base_entity import Entity
 
 
 @dataclass
@@ -49,17 +46,14 @@ class SourceFile:
         return Location(str(self.path), line, col)
 
 
-class Entity:
-    """An element of a launch file; attributes are parsed into values on first read."""
+class XmlEntity(Entity):
+    """An element of an XML launch file."""
 
     def __init__(self, element: etree._Element, source: SourceFile) -> None:
+        super().__init__(str(element.tag))
         self.element = element
         self.source = source
-        self.tag = str(element.tag)
-        self._read: set[str] = set()
         self._start = self._find_start()
-
-    # -- locations ---------------------------------------------------------------------------
 
     def _find_start(self) -> int:
         sourceline: int | None = self.element.sourceline  # type: ignore[assignment]
@@ -84,128 +78,17 @@ class Entity:
             return self.location
         return self.source.location(match.end())
 
-    def error(
-        self,
-        message: str,
-        *,
-        expected: str | None = None,
-        attr: str | None = None,
-        hint: str | None = None,
-    ) -> LaunchFileError:
-        """A parse error located at this element or one of its attributes."""
-        where = self.attribute_location(attr) if attr else self.location
-        return LaunchFileError(message, where, expected=expected, hint=hint)
+    def attribute_names(self) -> list[str]:
+        """The element's attribute names."""
+        return [n if isinstance(n, str) else n.decode() for n in self.element.attrib]
 
-    # -- attributes --------------------------------------------------------------------------
-
-    def has(self, name: str) -> bool:
-        """Whether attribute ``name`` is present."""
-        return name in self.element.attrib
-
-    def raw(self, name: str) -> str | None:
-        """Attribute text as written (marks it read)."""
-        self._read.add(name)
+    def attribute_text(self, name: str) -> str | None:
+        """The attribute's text as lxml read it (entities and character references resolved)."""
         value = self.element.get(name)
         return None if value is None else str(value)
 
-    def value(self, name: str) -> Value | None:
-        """Attribute parsed into text and substitutions, or None when absent."""
-        text = self.raw(name)
-        if text is None:
-            return None
-        return parse_value(text, self.attribute_location(name))
-
-    def required(self, name: str, what: str = "") -> Value:
-        """A required attribute's value; an error naming the attribute when missing."""
-        value = self.value(name)
-        if value is None:
-            raise self.error(
-                f"<{self.tag}> is missing attribute '{name}'",
-                expected=what or f'{name}="..."',
-            )
-        return value
-
-    def plain(self, name: str) -> str | None:
-        """Attribute that takes no substitutions (``\\`` escapes are removed)."""
-        value = self.value(name)
-        if value is None:
-            return None
-        text = literal(value)
-        if text is None:
-            raise self.error(
-                f"attribute '{name}' of <{self.tag}> cannot contain substitutions",
-                expected="plain text",
-                attr=name,
-            )
-        return text
-
-    def static_bool(self, name: str, default: bool) -> bool:
-        """A boolean attribute that must be written literally."""
-        text = self.plain(name)
-        if text is None:
-            return default
-        value = bool_value(text)
-        if value is None:
-            raise self.error(
-                f"attribute '{name}' of <{self.tag}> is {text!r}", expected=BOOL_EXPECTED, attr=name
-            )
-        return value
-
-    def checked(self, name: str, check: str) -> Value | None:
-        """An attribute that may hold substitutions; when it is literal, its text is checked
-        now (``check``: bool, float, int, uint) so a typo fails before anything starts."""
-        value = self.value(name)
-        text = None if value is None else literal(value)
-        if text is None:
-            return value
-        expected = {
-            "bool": BOOL_EXPECTED,
-            "float": "a number",
-            "int": "an integer",
-            "ufloat": "a number >= 0",
-        }[check]
-        ok = True
-        if check == "bool":
-            ok = bool_value(text) is not None
-        else:
-            try:
-                number = float(text) if check != "int" else int(text)
-                ok = check != "ufloat" or number >= 0
-            except ValueError:
-                ok = False
-        if not ok:
-            raise self.error(
-                f"attribute '{name}' of <{self.tag}> is {text!r}", expected=expected, attr=name
-            )
-        return value
-
-    def choice(self, name: str, choices: Sequence[str]) -> Value | None:
-        """An attribute whose literal text must be one of ``choices``."""
-        value = self.value(name)
-        text = None if value is None else literal(value)
-        if text is not None and text not in choices:
-            raise self.error(
-                f"attribute '{name}' of <{self.tag}> is {text!r}",
-                expected="one of " + ", ".join(choices),
-                attr=name,
-            )
-        return value
-
-    # -- children ----------------------------------------------------------------------------
-
     def children(self) -> list[Entity]:
         """Child elements (comments and processing instructions skipped)."""
-        return [Entity(child, self.source) for child in self.element if isinstance(child.tag, str)]
-
-    def assert_fully_read(self) -> None:
-        """Reject attributes no parser asked for, naming the ones it would have read."""
-        for raw_name in self.element.attrib:
-            name = raw_name if isinstance(raw_name, str) else raw_name.decode()
-            if name not in self._read:
-                allowed = sorted(self._read)
-                expected = ", ".join(allowed) if allowed else "no attributes"
-                raise self.error(
-                    f"unknown attribute '{name}' on <{self.tag}>",
-                    expected=f"one of: {expected}" if allowed else expected,
-                    attr=name,
-                )
+        return [
+            XmlEntity(child, self.source) for child in self.element if isinstance(child.tag, str)
+        ]

@@ -1,59 +1,34 @@
-"""Load XML launch files (lxml keeps line numbers) into :class:`LaunchDescription`s."""
+"""Parse XML launch files (lxml keeps line numbers) into :class:`LaunchDescription`s."""
 
 from __future__ import annotations
 
 from pathlib import Path
-from typing import TYPE_CHECKING
 
 from lxml import etree
 
 from launchkit.description.launch_description import LaunchDescription
 from launchkit.errors import LaunchFileError, Location
-from launchkit.frontend.action_parser import TAGS, parse_condition
-from launchkit.frontend.tags import launch as _tags  # noqa: F401  (registers the tag parsers)
-from launchkit.frontend.xml.entity import Entity, SourceFile
-
-if TYPE_CHECKING:
-    from launchkit.description.actions.base import Action
+from launchkit.frontend.action_parser import ActionParser
+from launchkit.frontend.xml.entity import SourceFile, XmlEntity
 
 XML_SUFFIXES = (".xml", ".launch")
 
 
 class XmlParser:
-    """Parses launch files, caching each file's description by path."""
+    """Parses XML launch text; the tags are read by ``actions``."""
 
-    def __init__(self) -> None:
-        self._cache: dict[Path, LaunchDescription] = {}
+    def __init__(self, actions: ActionParser) -> None:
+        self.actions = actions
 
-    def load(self, path: Path, included_from: Location | None = None) -> LaunchDescription:
-        """The description of ``path``; errors carry the file, line and column."""
-        path = path.resolve()
-        cached = self._cache.get(path)
-        if cached is not None:
-            return cached
-        if path.suffix == ".py" and path.is_file():
-            from launchkit.frontend.python import load_python_launch
-
-            description = load_python_launch(path, included_from)
-            self._cache[path] = description
-            return description
-        if path.suffix not in XML_SUFFIXES:
-            raise LaunchFileError(
-                f"cannot read launch file '{path.name}'",
-                included_from or Location(str(path)),
-                expected="an XML launch file (*.launch.xml, *.xml, *.launch) "
-                "or a Python one (*.launch.py)",
-                hint="YAML launch files are not supported",
-            )
+    def parse_file(self, path: Path, included_from: Location | None = None) -> LaunchDescription:
+        """Read and parse ``path``; ``included_from`` locates an error in reading it."""
         try:
             text = path.read_text()
         except OSError as error:
             raise LaunchFileError(
                 f"cannot read '{path}': {error.strerror}", included_from
             ) from None
-        description = self.parse_text(text, path)
-        self._cache[path] = description
-        return description
+        return self.parse_text(text, path)
 
     def parse_text(self, text: str, path: Path) -> LaunchDescription:
         """Parse launch XML ``text`` as if read from ``path``."""
@@ -69,43 +44,11 @@ class XmlParser:
                 Location(str(path), line, col),
                 expected="well-formed XML",
             ) from None
-        entity = Entity(root, source)
+        entity = XmlEntity(root, source)
         if entity.tag != "launch":
             raise entity.error(
                 f"the root element is <{entity.tag}>", expected="<launch> as the root element"
             )
         deprecated = entity.raw("deprecated")
         entity.assert_fully_read()
-        return LaunchDescription(path, self.parse_actions(entity), deprecated)
-
-    def parse_actions(self, parent: Entity, skip: tuple[str, ...] = ()) -> list[Action]:
-        """The actions among ``parent``'s children (tags in ``skip`` are left to the parent)."""
-        return [self.parse_action(child) for child in parent.children() if child.tag not in skip]
-
-    def parse_action(self, entity: Entity) -> Action:
-        """One action tag, with its condition, fully checked."""
-        parse = TAGS.get(entity.tag)
-        if parse is None:
-            raise entity.error(
-                f"unknown tag <{entity.tag}>",
-                expected="one of: " + ", ".join(sorted(TAGS)),
-                hint=_hint(entity.tag),
-            )
-        condition = parse_condition(entity)
-        action = parse(entity, self)
-        action.condition = condition
-        action.location = entity.location
-        entity.assert_fully_read()
-        return action
-
-
-_ROS1_HINTS = {
-    "rosparam": 'ROS 2 has no <rosparam>; use <param from="file.yaml"/> inside <node>',
-    "machine": "ROS 2 has no <machine>",
-    "test": "ROS 2 has no <test>; see launchkit.testing",
-    "env": "use <set_env> at this level; <env> belongs inside <executable> or <node>",
-}
-
-
-def _hint(tag: str) -> str | None:
-    return _ROS1_HINTS.get(tag)
+        return LaunchDescription(path, self.actions.parse_actions(entity), deprecated)
