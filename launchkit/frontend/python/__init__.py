@@ -4,7 +4,8 @@ launchkit does not ship ROS's launch engine. Instead it runs the file's
 ``generate_launch_description()`` with small stand-in modules named ``launch``,
 ``launch.actions``, ``launch_ros.actions``, ... whose classes build launchkit's own description
 objects, so an included ``gazebo.launch.py`` runs through the same supervisor, checks and
-errors as XML. Only the declarative part of the API is covered (see ``api.py``); anything else
+errors as XML. Only the declarative part of the API is covered (``launch_api.py``,
+``launch_substitutions.py``, ``ros_api.py``); anything else
 (``OpaqueFunction``, event handlers) is a clear error naming the file and line.
 """
 

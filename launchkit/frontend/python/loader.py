@@ -13,6 +13,7 @@ from launchkit.description.actions.base import Action
 from launchkit.description.launch_description import LaunchDescription
 from launchkit.errors import LaunchFileError, LaunchkitError, Location
 from launchkit.frontend.python import launch_api as L
+from launchkit.frontend.python import launch_substitutions as S
 from launchkit.frontend.python import ros_api as R
 from launchkit.frontend.python import values
 from launchkit.frontend.python.values import unsupported
@@ -46,28 +47,28 @@ def _stand_in_modules() -> dict[str, types.ModuleType]:
     )
     substitutions = _module(
         "launch.substitutions",
-        LaunchConfiguration=L.LaunchConfiguration,
-        EnvironmentVariable=L.EnvironmentVariable,
-        TextSubstitution=L.TextSubstitution,
-        PythonExpression=L.PythonExpression,
-        PathJoinSubstitution=L.PathJoinSubstitution,
-        Command=L.Command_,
-        FindExecutable=L.FindExecutable,
-        ThisLaunchFileDir=L.ThisLaunchFileDir,
-        ThisLaunchFile=L.ThisLaunchFile,
-        AnonName=L.AnonName,
-        NotSubstitution=L.NotSubstitution,
-        AndSubstitution=L.AndSubstitution,
-        OrSubstitution=L.OrSubstitution,
-        AnySubstitution=L.AnySubstitution,
-        EqualsSubstitution=L.EqualsSubstitution,
+        LaunchConfiguration=S.LaunchConfiguration,
+        EnvironmentVariable=S.EnvironmentVariable,
+        TextSubstitution=S.TextSubstitution,
+        PythonExpression=S.PythonExpression,
+        PathJoinSubstitution=S.PathJoinSubstitution,
+        Command=S.Command_,
+        FindExecutable=S.FindExecutable,
+        ThisLaunchFileDir=S.ThisLaunchFileDir,
+        ThisLaunchFile=S.ThisLaunchFile,
+        AnonName=S.AnonName,
+        NotSubstitution=S.NotSubstitution,
+        AndSubstitution=S.AndSubstitution,
+        OrSubstitution=S.OrSubstitution,
+        AnySubstitution=S.AnySubstitution,
+        EqualsSubstitution=S.EqualsSubstitution,
     )
     conditions = _module(
         "launch.conditions",
-        IfCondition=L.IfCondition,
-        UnlessCondition=L.UnlessCondition,
-        LaunchConfigurationEquals=L.LaunchConfigurationEquals,
-        LaunchConfigurationNotEquals=L.LaunchConfigurationNotEquals,
+        IfCondition=S.IfCondition,
+        UnlessCondition=S.UnlessCondition,
+        LaunchConfigurationEquals=S.LaunchConfigurationEquals,
+        LaunchConfigurationNotEquals=S.LaunchConfigurationNotEquals,
     )
     sources = _module(
         "launch.launch_description_sources",

@@ -11,9 +11,10 @@ from launchkit.description import actions as lk
 from launchkit.description.actions.parameters import ParamEntry
 from launchkit.description.conditions import Condition
 from launchkit.description.substitutions import ExecInPkg, FindPkgPrefix, FindPkgShare
-from launchkit.frontend.python.launch_api import _argv_text, process_options
+from launchkit.frontend.python.launch_api import process_options
 from launchkit.frontend.python.values import (
     SubstitutionLike,
+    argv_text,
     here,
     optional_value,
     to_value,
@@ -104,8 +105,8 @@ class Node(lk.ExecuteNode):
             node_name=optional_value(name),
             namespace=optional_value(namespace),
             exec_name=optional_value(exec_name),
-            args=_argv_text(list(arguments)) if arguments else None,
-            ros_args=_argv_text(list(ros_arguments)) if ros_arguments else None,
+            args=argv_text(list(arguments)) if arguments else None,
+            ros_args=argv_text(list(ros_arguments)) if ros_arguments else None,
             params=_param_entries(parameters or []),
             remaps=[lk.Remap(to_value(a), to_value(b)) for a, b in (remappings or [])],
             location=here(),

@@ -82,3 +82,13 @@ def unsupported(name: str) -> type:
         )
 
     return type(name, (), {"__init__": refuse})
+
+
+def argv_text(items: Any) -> tuple[Any, ...]:
+    """A command given as a list of words, as one command-line value (each word quoted)."""
+    if isinstance(items, str | SubstitutionLike):
+        return to_value(items)
+    parts: list[Any] = []
+    for index, item in enumerate(items):
+        parts.extend([" " if index else "", "'", item, "'"])
+    return to_value(parts)
