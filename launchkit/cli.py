@@ -35,7 +35,7 @@ def _launch_parser(prog: str, description: str) -> argparse.ArgumentParser:
 
 
 def build_parser() -> argparse.ArgumentParser:
-    """The top-level parser (the ROS commands are parsed by ``launchkit.ros.cli``)."""
+    """The top-level parser (the ROS commands are parsed by ``launchkit.ros_cli.main``)."""
     parser = argparse.ArgumentParser(
         prog="launchkit", description="Run ROS 2 XML launch files without a ROS install."
     )
@@ -121,7 +121,7 @@ def _guarded(action: object, debug: bool) -> int:
 
 
 def _ros_command(command: str, argv: list[str]) -> int:
-    from launchkit.ros.cli import main as ros_main  # type: ignore[import-not-found,unused-ignore]
+    from launchkit.ros_cli.main import main as ros_main  # type: ignore[import-not-found,unused-ignore]
 
     return int(ros_main(command, argv))
 

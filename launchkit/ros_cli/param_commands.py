@@ -7,10 +7,10 @@ import time
 from typing import Any
 
 from launchkit.errors import RuntimeLaunchError
-from launchkit.ros.cli_common import CliUsageError, add_router_option, cli_node, graph_tokens
 from launchkit.ros.msgs import get_message, get_service
 from launchkit.ros.node import Node
 from launchkit.ros.params import Parameter, ParameterType, parse_value_text
+from launchkit.ros_cli.common import CliUsageError, add_router_option, cli_node, graph_tokens
 
 _LABELS = {
     ParameterType.BOOL: "Boolean value is",

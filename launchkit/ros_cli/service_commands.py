@@ -6,7 +6,9 @@ import argparse
 from typing import Any
 
 from launchkit.errors import RuntimeLaunchError
-from launchkit.ros.cli_common import (
+from launchkit.ros.msgs import get_service
+from launchkit.ros.services import ServiceCallError
+from launchkit.ros_cli.common import (
     CliUsageError,
     add_router_option,
     cli_node,
@@ -14,9 +16,7 @@ from launchkit.ros.cli_common import (
     normalize_topic,
     visible,
 )
-from launchkit.ros.msgs import get_service
-from launchkit.ros.msgyaml import from_yaml, short_repr
-from launchkit.ros.services import ServiceCallError
+from launchkit.ros_cli.msgyaml import from_yaml, short_repr
 
 
 def add_parser(commands: Any) -> None:

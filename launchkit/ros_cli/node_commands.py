@@ -5,7 +5,7 @@ from __future__ import annotations
 import argparse
 from typing import Any
 
-from launchkit.ros.cli_common import (
+from launchkit.ros_cli.common import (
     CliUsageError,
     add_router_option,
     cli_node,

@@ -6,15 +6,22 @@ import argparse
 import signal
 from types import FrameType
 
-from launchkit.ros import cli_interface, cli_node, cli_param, cli_router, cli_service, cli_topic
+from launchkit.ros_cli import (
+    interface_commands,
+    node_commands,
+    param_commands,
+    router_commands,
+    service_commands,
+    topic_commands,
+)
 
 _FAMILIES = {
-    "topic": cli_topic,
-    "node": cli_node,
-    "service": cli_service,
-    "param": cli_param,
-    "interface": cli_interface,
-    "router": cli_router,
+    "topic": topic_commands,
+    "node": node_commands,
+    "service": service_commands,
+    "param": param_commands,
+    "interface": interface_commands,
+    "router": router_commands,
 }
 
 

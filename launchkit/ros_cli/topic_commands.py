@@ -10,7 +10,12 @@ import threading
 import time
 from typing import Any
 
-from launchkit.ros.cli_common import (
+from launchkit.ros.clock import Clock, ClockType
+from launchkit.ros.keyexpr import Token
+from launchkit.ros.msgs import get_message, normalize_type_name
+from launchkit.ros.qos import DurabilityPolicy, QoSProfile, ReliabilityPolicy
+from launchkit.ros.rate import Rate
+from launchkit.ros_cli.common import (
     CliUsageError,
     add_router_option,
     cli_node,
@@ -18,12 +23,7 @@ from launchkit.ros.cli_common import (
     normalize_topic,
     visible,
 )
-from launchkit.ros.clock import Clock, ClockType
-from launchkit.ros.keyexpr import Token
-from launchkit.ros.msgs import get_message, normalize_type_name
-from launchkit.ros.msgyaml import from_yaml, to_yaml
-from launchkit.ros.qos import DurabilityPolicy, QoSProfile, ReliabilityPolicy
-from launchkit.ros.rate import Rate
+from launchkit.ros_cli.msgyaml import from_yaml, to_yaml
 
 
 def add_parser(commands: Any) -> None:
@@ -194,7 +194,7 @@ def _linger(pub: Any) -> None:
 
 
 def _one_line(msg: Any) -> str:
-    from launchkit.ros.msgyaml import short_repr
+    from launchkit.ros_cli.msgyaml import short_repr
 
     return short_repr(msg)
 
