@@ -9,7 +9,7 @@ import threading
 import weakref
 from collections.abc import Callable
 from types import FrameType
-from typing import TYPE_CHECKING, Any
+from typing import TYPE_CHECKING, Protocol
 
 from launchkit.ros.arguments import RosArguments, parse_ros_args
 from launchkit.ros.keyexpr import domain_id
@@ -31,6 +31,16 @@ if TYPE_CHECKING:
     from launchkit.ros.graph import Graph
 
 
+class ContextNode(Protocol):
+    """What the context does with the nodes created in it (:class:`launchkit.ros.Node`)."""
+
+    def wake(self) -> None:
+        """Make a blocked spin of the node look again."""
+
+    def close_entities(self) -> None:
+        """Undeclare the node's entities (the context shuts down)."""
+
+
 class NotInitializedError(RuntimeError):
     """A ROS entity was used before ``init()`` or after ``shutdown()``."""
 
@@ -50,7 +60,7 @@ class Context:
         self.argv: list[str] = []
         self.ros_args = RosArguments()
         self.domain_id = 0
-        self._nodes: weakref.WeakSet[Any] = weakref.WeakSet()
+        self._nodes: weakref.WeakSet[ContextNode] = weakref.WeakSet()
 
     def init(self, args: list[str] | None = None, domain: int | None = None) -> None:
         """Parse ``--ros-args`` and mark the context usable (the session opens on first use)."""
@@ -75,7 +85,7 @@ class Context:
         """
         self._interrupted = True
         for node in list(self._nodes):
-            node._wake()
+            node.wake()
 
     def require(self) -> None:
         """Raise :class:`NotInitializedError` unless the context is usable."""
@@ -114,7 +124,7 @@ class Context:
             self._next_id += 1
             return self._next_id
 
-    def add_node(self, node: Any) -> None:
+    def add_node(self, node: ContextNode) -> None:
         """Track ``node`` so shutdown can wake its executor."""
         self._nodes.add(node)
 
@@ -131,11 +141,11 @@ class Context:
             callbacks, self._shutdown_callbacks = self._shutdown_callbacks, []
             nodes = list(self._nodes)
         for node in nodes:
-            node._wake()
+            node.wake()
         for callback in callbacks:
             callback()
         for node in nodes:
-            node._close_entities()
+            node.close_entities()
         with self._lock:
             if self._graph is not None:
                 self._graph.close()

@@ -8,13 +8,12 @@ from __future__ import annotations
 
 import queue
 import time
-from collections.abc import Callable
-from typing import TYPE_CHECKING, Any
+from collections.abc import Callable, Sequence
+from typing import TYPE_CHECKING, Any, Protocol
 
 from launchkit.ros.context import Context, default_context
 
 if TYPE_CHECKING:
-    from launchkit.ros.node import Node
     from launchkit.ros.timer import Timer
 
 Work = tuple[Callable[..., Any], tuple[Any, ...]]
@@ -55,37 +54,51 @@ class WorkQueue:
         self._queue.put(_WAKE)
 
 
+class ExecutableNode(Protocol):
+    """What an executor uses of a node (:class:`launchkit.ros.Node`)."""
+
+    @property
+    def executor(self) -> Executor:
+        """The executor that runs the node when none is given."""
+
+    @property
+    def timers(self) -> Sequence[Timer]:
+        """The node's timers."""
+
+    def route_work(self, queue: WorkQueue | None) -> WorkQueue:
+        """Send the node's work to ``queue`` (None: its own); the previous queue."""
+
+
 class Executor:
     """Runs the callbacks of the nodes added to it, one at a time, in the spinning thread."""
 
     def __init__(self, *, context: Context | None = None) -> None:
         self.context = context or default_context
-        self._nodes: list[Node] = []
+        self._nodes: list[ExecutableNode] = []
         self._work = WorkQueue()
 
-    def add_node(self, node: Node) -> bool:
+    def add_node(self, node: ExecutableNode) -> bool:
         """Add ``node``; its pending work moves to this executor."""
         if node in self._nodes:
             return False
         self._nodes.append(node)
-        old = node._work
-        node._work = self._work
+        old = node.route_work(self._work)
         while (item := old.get(0)) is not None:
             self._work.put(item)
         return True
 
-    def remove_node(self, node: Node) -> None:
+    def remove_node(self, node: ExecutableNode) -> None:
         """Stop running ``node``'s callbacks here (it gets its own queue back)."""
         if node in self._nodes:
             self._nodes.remove(node)
-            node._work = WorkQueue()
+            node.route_work(None)
 
-    def get_nodes(self) -> list[Node]:
+    def get_nodes(self) -> list[ExecutableNode]:
         """The nodes this executor runs."""
         return list(self._nodes)
 
     def _timers(self) -> list[Timer]:
-        return [t for node in self._nodes for t in node._timers]
+        return [t for node in self._nodes for t in node.timers]
 
     def spin_once(self, timeout_sec: float | None = None) -> None:
         """Run one ready callback, waiting at most ``timeout_sec`` (None: until one is ready)."""
@@ -156,26 +169,29 @@ MultiThreadedExecutor = SingleThreadedExecutor  # callbacks still run one at a t
 
 
 def spin_once(
-    node: Node, *, executor: Executor | None = None, timeout_sec: float | None = None
+    node: ExecutableNode, *, executor: Executor | None = None, timeout_sec: float | None = None
 ) -> None:
     """Run at most one of ``node``'s ready callbacks, waiting up to ``timeout_sec``."""
     _executor_for(node, executor).spin_once(timeout_sec)
 
 
-def spin(node: Node, executor: Executor | None = None) -> None:
+def spin(node: ExecutableNode, executor: Executor | None = None) -> None:
     """Run ``node``'s callbacks until shutdown (SIGINT shuts down and makes this return)."""
     _executor_for(node, executor).spin()
 
 
 def spin_until_future_complete(
-    node: Node, future: Any, executor: Executor | None = None, timeout_sec: float | None = None
+    node: ExecutableNode,
+    future: Any,
+    executor: Executor | None = None,
+    timeout_sec: float | None = None,
 ) -> None:
     """Run ``node``'s callbacks until ``future`` is done."""
     _executor_for(node, executor).spin_until_future_complete(future, timeout_sec)
 
 
-def _executor_for(node: Node, executor: Executor | None) -> Executor:
+def _executor_for(node: ExecutableNode, executor: Executor | None) -> Executor:
     if executor is not None:
         executor.add_node(node)
         return executor
-    return node._own_executor()
+    return node.executor

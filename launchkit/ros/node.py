@@ -2,28 +2,30 @@
 
 from __future__ import annotations
 
-from collections.abc import Callable, Sequence
+from collections.abc import Callable
 from typing import Any
 
 from launchkit.ros import names
 from launchkit.ros.arguments import parse_ros_args
 from launchkit.ros.clock import Clock, ClockType, ROSClock
 from launchkit.ros.context import Context, default_context
-from launchkit.ros.executor import Executor, WorkQueue
+from launchkit.ros.executor import Executor, Work, WorkQueue
 from launchkit.ros.keyexpr import node_token, topic_key
 from launchkit.ros.logging import RcutilsLogger, apply_log_levels
-from launchkit.ros.node_params import ParameterStore, SetParametersResult
+from launchkit.ros.node_params import ParameterMethods, ParameterStore
 from launchkit.ros.params import Parameter, overrides_for
 from launchkit.ros.qos import QoSProfile, as_profile
 from launchkit.ros.timer import Timer
 from launchkit.ros.topics import Publisher, Subscription
 
 
-class Node:
+class Node(ParameterMethods):
     """A ROS node: a name in a namespace, owning publishers, subscriptions, timers, services.
 
     ``--ros-args`` of the process (``-r __node:=``, ``-r __ns:=``, ``-r from:=to``, ``-p``,
-    ``--params-file``, ``--log-level``) apply to it, as in rclpy.
+    ``--params-file``, ``--log-level``) apply to it, as in rclpy. Its publishers,
+    subscriptions, services and clients use it through :class:`NodeInterface`, its executor
+    through ``timers`` and ``route_work``.
     """
 
     def __init__(
@@ -134,9 +136,6 @@ class Node:
             self._remaps, expanded, self._original_name, self._name, self._namespace, "service"
         )
 
-    def _topic_key(self, fqn: str, type_name: str, type_hash: str) -> str:
-        return topic_key(self.context.domain_id, fqn, type_name, type_hash)
-
     # logging and time ---------------------------------------------------------------------
     def get_logger(self) -> RcutilsLogger:
         """The node's logger (named after the node)."""
@@ -173,79 +172,6 @@ class Node:
                 self.destroy_subscription(self._clock_sub)
                 self._clock_sub = None
             self._clock._set_ros_time_override(False)
-
-    # parameters ---------------------------------------------------------------------------
-    def declare_parameter(
-        self,
-        name: str,
-        value: Any = None,
-        descriptor: Any = None,
-        ignore_override: bool = False,
-    ) -> Parameter:
-        """Declare a parameter; a value from ``-p``/``--params-file``/``<param>`` wins."""
-        return self._params.declare(name, value, descriptor, ignore_override)
-
-    def declare_parameters(
-        self, namespace: str, parameters: Sequence[tuple[Any, ...]], ignore_override: bool = False
-    ) -> list[Parameter]:
-        """Declare several ``(name, default[, descriptor])`` under ``namespace.``."""
-        prefix = f"{namespace}." if namespace else ""
-        return [
-            self.declare_parameter(
-                prefix + entry[0],
-                entry[1] if len(entry) > 1 else None,
-                entry[2] if len(entry) > 2 else None,
-                ignore_override,
-            )
-            for entry in parameters
-        ]
-
-    def has_parameter(self, name: str) -> bool:
-        """Whether ``name`` is declared."""
-        return name in self._params.params
-
-    def get_parameter(self, name: str) -> Parameter:
-        """The declared parameter ``name``."""
-        return self._params.get(name)
-
-    def get_parameter_or(self, name: str, alternative_value: Parameter | None = None) -> Parameter:
-        """The parameter, or ``alternative_value`` when it is not declared."""
-        if name in self._params.params:
-            return self._params.params[name]
-        return alternative_value or Parameter(name, Parameter.Type.NOT_SET, None)
-
-    def get_parameters(self, names_: list[str]) -> list[Parameter]:
-        """Several parameters."""
-        return [self.get_parameter(n) for n in names_]
-
-    def get_parameters_by_prefix(self, prefix: str) -> dict[str, Parameter]:
-        """Parameters under ``prefix.``, keyed by the rest of their name."""
-        head = f"{prefix}." if prefix else ""
-        return {n[len(head) :]: p for n, p in self._params.params.items() if n.startswith(head)}
-
-    def set_parameters(self, parameter_list: list[Parameter]) -> list[SetParametersResult]:
-        """Set parameters one by one (each may fail on its own)."""
-        return self._params.set(parameter_list)
-
-    def set_parameters_atomically(self, parameter_list: list[Parameter]) -> SetParametersResult:
-        """Set all or none."""
-        return self._params.set_atomically(parameter_list)
-
-    def add_on_set_parameters_callback(
-        self, callback: Callable[[list[Parameter]], SetParametersResult]
-    ) -> None:
-        """Have ``callback`` approve or reject every parameter change."""
-        self._params.on_set.append(callback)
-
-    def remove_on_set_parameters_callback(
-        self, callback: Callable[[list[Parameter]], SetParametersResult]
-    ) -> None:
-        """Stop asking ``callback``."""
-        self._params.on_set.remove(callback)
-
-    @property
-    def _parameters(self) -> dict[str, Parameter]:
-        return self._params.params
 
     # entities -----------------------------------------------------------------------------
     def create_publisher(
@@ -335,10 +261,6 @@ class Node:
         client.destroy()
         return True
 
-    def _forget(self, entity: Any) -> None:
-        if entity in self._entities:
-            self._entities.remove(entity)
-
     # graph --------------------------------------------------------------------------------
     def count_publishers(self, topic_name: str) -> int:
         """Publishers on ``topic_name`` anywhere in the graph."""
@@ -364,22 +286,57 @@ class Node:
                 topics.setdefault(t.topic, set()).add(t.type_name)
         return sorted((name, sorted(types)) for name, types in topics.items())
 
-    # executor plumbing -------------------------------------------------------------------
+    # the node interface (what its entities use; see node_interface.py) -------------------
+    @property
+    def zid(self) -> str:
+        """The Zenoh session id the node's liveliness token carries."""
+        return self._zid
+
+    @property
+    def node_id(self) -> int:
+        """The node's id within its context."""
+        return self._node_id
+
+    def topic_key(self, fqn: str, type_name: str, type_hash: str) -> str:
+        """The Zenoh key expression of a topic or service of this node's domain."""
+        return topic_key(self.context.domain_id, fqn, type_name, type_hash)
+
+    def post(self, work: Work) -> None:
+        """Run ``work`` in the thread that spins the node (called from Zenoh's threads)."""
+        self._work.put(work)
+
+    def forget(self, entity: object) -> None:
+        """``entity`` was destroyed: the node no longer closes it at shutdown."""
+        if entity in self._entities:
+            self._entities.remove(entity)
+
+    # executor plumbing (what executors and the context use) --------------------------------
     @property
     def executor(self) -> Executor:
-        """The executor running this node's callbacks."""
-        return self._own_executor()
-
-    def _own_executor(self) -> Executor:
+        """The executor running this node's callbacks (one of its own unless it was added to
+        another)."""
         if self._executor is None:
             self._executor = Executor(context=self.context)
             self._executor.add_node(self)
         return self._executor
 
-    def _wake(self) -> None:
+    @property
+    def timers(self) -> list[Timer]:
+        """The node's timers, for its executor."""
+        return list(self._timers)
+
+    def route_work(self, queue: WorkQueue | None) -> WorkQueue:
+        """Send the node's callbacks to ``queue`` from now on (None: a queue of its own, when
+        it leaves an executor); the previous queue, whose pending work the caller moves."""
+        previous, self._work = self._work, queue or WorkQueue()
+        return previous
+
+    def wake(self) -> None:
+        """Make a blocked spin of this node look again (shutdown, a new timer)."""
         self._work.wake()
 
-    def _close_entities(self) -> None:
+    def close_entities(self) -> None:
+        """Undeclare every entity and the node's token (the context is shutting down)."""
         for entity in list(self._entities):
             entity.destroy()
         for timer in self._timers:
@@ -396,5 +353,5 @@ class Node:
         if self._destroyed:
             return
         self._destroyed = True
-        self._close_entities()
-        self._wake()
+        self.close_entities()
+        self.wake()

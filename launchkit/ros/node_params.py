@@ -1,8 +1,9 @@
-"""A node's parameter store: declare, get, set, with overrides and type checks (rclpy rules)."""
+"""A node's parameter store: declare, get, set, with overrides and type checks (rclpy rules),
+and the parameter methods :class:`launchkit.ros.Node` offers over it."""
 
 from __future__ import annotations
 
-from collections.abc import Callable
+from collections.abc import Callable, Sequence
 from dataclasses import dataclass
 from typing import Any
 
@@ -129,3 +130,78 @@ class ParameterStore:
             if not getattr(result, "successful", False):
                 return SetParametersResult(False, str(getattr(result, "reason", "")))
         return SetParametersResult(True)
+
+
+class ParameterMethods:
+    """The parameter methods of :class:`launchkit.ros.Node`, with rclpy's names, over the
+    node's :class:`ParameterStore`."""
+
+    _params: ParameterStore
+
+    def declare_parameter(
+        self,
+        name: str,
+        value: Any = None,
+        descriptor: Any = None,
+        ignore_override: bool = False,
+    ) -> Parameter:
+        """Declare a parameter; a value from ``-p``/``--params-file``/``<param>`` wins."""
+        return self._params.declare(name, value, descriptor, ignore_override)
+
+    def declare_parameters(
+        self, namespace: str, parameters: Sequence[tuple[Any, ...]], ignore_override: bool = False
+    ) -> list[Parameter]:
+        """Declare several ``(name, default[, descriptor])`` under ``namespace.``."""
+        prefix = f"{namespace}." if namespace else ""
+        return [
+            self.declare_parameter(
+                prefix + entry[0],
+                entry[1] if len(entry) > 1 else None,
+                entry[2] if len(entry) > 2 else None,
+                ignore_override,
+            )
+            for entry in parameters
+        ]
+
+    def has_parameter(self, name: str) -> bool:
+        """Whether ``name`` is declared."""
+        return name in self._params.params
+
+    def get_parameter(self, name: str) -> Parameter:
+        """The declared parameter ``name``."""
+        return self._params.get(name)
+
+    def get_parameter_or(self, name: str, alternative_value: Parameter | None = None) -> Parameter:
+        """The parameter, or ``alternative_value`` when it is not declared."""
+        if name in self._params.params:
+            return self._params.params[name]
+        return alternative_value or Parameter(name, Parameter.Type.NOT_SET, None)
+
+    def get_parameters(self, names_: list[str]) -> list[Parameter]:
+        """Several parameters."""
+        return [self.get_parameter(n) for n in names_]
+
+    def get_parameters_by_prefix(self, prefix: str) -> dict[str, Parameter]:
+        """Parameters under ``prefix.``, keyed by the rest of their name."""
+        head = f"{prefix}." if prefix else ""
+        return {n[len(head) :]: p for n, p in self._params.params.items() if n.startswith(head)}
+
+    def set_parameters(self, parameter_list: list[Parameter]) -> list[SetParametersResult]:
+        """Set parameters one by one (each may fail on its own)."""
+        return self._params.set(parameter_list)
+
+    def set_parameters_atomically(self, parameter_list: list[Parameter]) -> SetParametersResult:
+        """Set all or none."""
+        return self._params.set_atomically(parameter_list)
+
+    def add_on_set_parameters_callback(
+        self, callback: Callable[[list[Parameter]], SetParametersResult]
+    ) -> None:
+        """Have ``callback`` approve or reject every parameter change."""
+        self._params.on_set.append(callback)
+
+    def remove_on_set_parameters_callback(
+        self, callback: Callable[[list[Parameter]], SetParametersResult]
+    ) -> None:
+        """Stop asking ``callback``."""
+        self._params.on_set.remove(callback)

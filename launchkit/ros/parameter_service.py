@@ -2,19 +2,36 @@
 
 from __future__ import annotations
 
-from typing import TYPE_CHECKING, Any
+from collections.abc import Callable
+from typing import Any, Protocol
 
 from launchkit.ros.msgs import get_message, get_service
+from launchkit.ros.node_params import SetParametersResult
 from launchkit.ros.params import Parameter, ParameterType
 
-if TYPE_CHECKING:
-    from launchkit.ros.node import Node
+
+class ParameterNode(Protocol):
+    """What the services use of their node (:class:`launchkit.ros.Node`)."""
+
+    def create_service(
+        self, srv_type: Any, srv_name: str, callback: Callable[[Any, Any], Any], **_: Any
+    ) -> Any:
+        """Serve ``srv_name``."""
+
+    def get_parameters_by_prefix(self, prefix: str) -> dict[str, Parameter]:
+        """The declared parameters under ``prefix`` (all of them for ``""``)."""
+
+    def set_parameters(self, parameter_list: list[Parameter]) -> list[SetParametersResult]:
+        """Set parameters one by one."""
+
+    def set_parameters_atomically(self, parameter_list: list[Parameter]) -> SetParametersResult:
+        """Set all or none."""
 
 
 class ParameterService:
     """Serves a node's parameters the way rclpy does (for ``launchkit param ...``)."""
 
-    def __init__(self, node: Node) -> None:
+    def __init__(self, node: ParameterNode) -> None:
         self.node = node
         prefix = "~/"
         node.create_service(
@@ -43,7 +60,7 @@ class ParameterService:
         )
 
     def _list(self, request: Any, response: Any) -> Any:
-        names = sorted(self.node._parameters)
+        names = sorted(self.node.get_parameters_by_prefix(""))
         prefixes = list(request.prefixes)
         depth = int(request.depth)
         selected = []
@@ -64,18 +81,17 @@ class ParameterService:
         return response
 
     def _get(self, request: Any, response: Any) -> Any:
+        declared = self.node.get_parameters_by_prefix("")
         values = []
         for name in request.names:
-            param = self.node._parameters.get(name, Parameter(name, ParameterType.NOT_SET, None))
+            param = declared.get(name, Parameter(name, ParameterType.NOT_SET, None))
             values.append(param.to_msg_value())
         response.values = values
         return response
 
     def _types(self, request: Any, response: Any) -> Any:
-        response.types = [
-            int(self.node._parameters[n].type_) if n in self.node._parameters else 0
-            for n in request.names
-        ]
+        declared = self.node.get_parameters_by_prefix("")
+        response.types = [int(declared[n].type_) if n in declared else 0 for n in request.names]
         return response
 
     def _set(self, request: Any, response: Any) -> Any:
@@ -94,11 +110,9 @@ class ParameterService:
 
     def _describe(self, request: Any, response: Any) -> Any:
         descriptor_cls = get_message("rcl_interfaces/msg/ParameterDescriptor")
+        declared = self.node.get_parameters_by_prefix("")
         response.descriptors = [
-            descriptor_cls(
-                name=n,
-                type=int(self.node._parameters[n].type_) if n in self.node._parameters else 0,
-            )
+            descriptor_cls(name=n, type=int(declared[n].type_) if n in declared else 0)
             for n in request.names
         ]
         return response

@@ -16,7 +16,7 @@ from launchkit.ros.qos import QoSProfile, qos_profile_services_default
 from launchkit.ros.task import Future
 
 if TYPE_CHECKING:
-    from launchkit.ros.node import Node
+    from launchkit.ros.node_interface import NodeInterface
 
 
 class ServiceCallError(RuntimeError):
@@ -26,18 +26,18 @@ class ServiceCallError(RuntimeError):
 class _ServiceEntity:
     KIND = ""
 
-    def __init__(self, node: Node, srv_type: Any, name: str) -> None:
+    def __init__(self, node: NodeInterface, srv_type: Any, name: str) -> None:
         self.node = node
         self.srv_type = srv_type
         self.type_name = message_type_name(srv_type)
         self.srv_name = node.resolve_service_name(name)
         self.type_hash = type_hash(self.type_name)
-        self.key = node._topic_key(self.srv_name, self.type_name, self.type_hash)
+        self.key = node.topic_key(self.srv_name, self.type_name, self.type_hash)
         qos: QoSProfile = qos_profile_services_default
         self.token_key = entity_token(
             node.context.domain_id,
-            node._zid,
-            node._node_id,
+            node.zid,
+            node.node_id,
             node.context.next_entity_id(),
             self.KIND,
             node.context.ros_args.enclave,
@@ -57,7 +57,7 @@ class _ServiceEntity:
                 item.undeclare()
             except Exception:  # the session may be closed already
                 pass
-        self.node._forget(self)
+        self.node.forget(self)
 
 
 class Service(_ServiceEntity):
@@ -66,7 +66,7 @@ class Service(_ServiceEntity):
     KIND = "SS"
 
     def __init__(
-        self, node: Node, srv_type: Any, name: str, callback: Callable[[Any, Any], Any]
+        self, node: NodeInterface, srv_type: Any, name: str, callback: Callable[[Any, Any], Any]
     ) -> None:
         super().__init__(node, srv_type, name)
         self.callback = callback
@@ -77,7 +77,7 @@ class Service(_ServiceEntity):
     def _on_query(self, query: zenoh.Query) -> None:
         payload = query.payload
         attachment = query.attachment
-        self.node._work.put(
+        self.node.post(
             (
                 self._handle,
                 (
@@ -123,7 +123,7 @@ class Client(_ServiceEntity):
 
     KIND = "SC"
 
-    def __init__(self, node: Node, srv_type: Any, name: str) -> None:
+    def __init__(self, node: NodeInterface, srv_type: Any, name: str) -> None:
         super().__init__(node, srv_type, name)
         self._sequence = 0
         self._lock = threading.Lock()
@@ -146,7 +146,7 @@ class Client(_ServiceEntity):
                 f"client of '{self.srv_name}' expects {self.type_name}_Request, "
                 f"got {type(request).__name__}"
             )
-        future = Future(lambda item: self.node._work.put(item))
+        future = Future(lambda item: self.node.post(item))
         with self._lock:
             self._sequence += 1
             attachment = encode_attachment(self._sequence, time.time_ns(), self.gid)

@@ -22,7 +22,7 @@ from launchkit.ros.qos import (
 )
 
 if TYPE_CHECKING:
-    from launchkit.ros.node import Node
+    from launchkit.ros.node_interface import NodeInterface
 
 
 class _Entity:
@@ -30,19 +30,19 @@ class _Entity:
 
     KIND = ""
 
-    def __init__(self, node: Node, msg_type: Any, topic: str, qos: QoSProfile) -> None:
+    def __init__(self, node: NodeInterface, msg_type: Any, topic: str, qos: QoSProfile) -> None:
         self.node = node
         self.msg_type = msg_type
         self.type_name = message_type_name(msg_type)
         self.topic_name = node.resolve_topic_name(topic)
         self.qos_profile = qos
         self.type_hash = type_hash(self.type_name)
-        self.key = node._topic_key(self.topic_name, self.type_name, self.type_hash)
+        self.key = node.topic_key(self.topic_name, self.type_name, self.type_hash)
         self.entity_id = node.context.next_entity_id()
         self.token_key = entity_token(
             node.context.domain_id,
-            node._zid,
-            node._node_id,
+            node.zid,
+            node.node_id,
             self.entity_id,
             self.KIND,
             node.context.ros_args.enclave,
@@ -94,7 +94,7 @@ class Publisher(_Entity):
 
     KIND = "MP"
 
-    def __init__(self, node: Node, msg_type: Any, topic: str, qos: QoSProfile) -> None:
+    def __init__(self, node: NodeInterface, msg_type: Any, topic: str, qos: QoSProfile) -> None:
         super().__init__(node, msg_type, topic, qos)
         session = node.context.session
         self._sequence = 0
@@ -178,7 +178,7 @@ class Publisher(_Entity):
     def destroy(self) -> None:
         """Undeclare the publisher and its token."""
         self._undeclare(self._pub)
-        self.node._forget(self)
+        self.node.forget(self)
 
 
 class Subscription(_Entity):
@@ -188,7 +188,7 @@ class Subscription(_Entity):
 
     def __init__(
         self,
-        node: Node,
+        node: NodeInterface,
         msg_type: Any,
         topic: str,
         callback: Callable[[Any], Any],
@@ -238,7 +238,7 @@ class Subscription(_Entity):
     def _on_sample(self, sample: zenoh.Sample) -> None:
         # zenoh's thread: copy out and hand over to the spinning thread
         attachment = sample.attachment
-        self.node._work.put(
+        self.node.post(
             (
                 self._deliver,
                 (sample.payload.to_bytes(), None if attachment is None else attachment.to_bytes()),
@@ -267,4 +267,4 @@ class Subscription(_Entity):
     def destroy(self) -> None:
         """Undeclare the subscriber and its token."""
         self._undeclare(self._sub)
-        self.node._forget(self)
+        self.node.forget(self)

@@ -65,7 +65,7 @@ def graph_tokens(node: Node, timeout: float = 2.0) -> list[Token]:
     up to ~60 ms) and answers nothing or part of the graph; so ask until two answers in a row
     agree (and are not empty), for at most ``_SETTLE`` seconds.
     """
-    own = node._zid
+    own = node.zid
     deadline = time.monotonic() + _SETTLE
     previous: set[str] | None = None
     while True:
