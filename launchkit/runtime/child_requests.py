@@ -28,7 +28,8 @@ from dataclasses import dataclass, field
 from typing import Any, Protocol
 
 from launchkit.description.process_spec import OUTPUT_MODES, ProcessSpec
-from launchkit.runtime.process import ManagedProcess, State
+from launchkit.runtime.lifecycle import State
+from launchkit.runtime.process import SupervisedProcess
 from launchkit.runtime.supervisor_client import MAX_PACKET, SOCKET_ENV
 
 _START_KEYS = {"op", "name", "cmd", "env", "cwd", "respawn", "respawn_delay", "output"}
@@ -42,13 +43,13 @@ class RequestError(Exception):
 class ChildHost(Protocol):
     """What the requests need from the supervisor."""
 
-    def owner_of(self, pid: int) -> ManagedProcess | None:
+    def owner_of(self, pid: int) -> SupervisedProcess | None:
         """The running process of the launch whose session ``pid`` is in."""
 
-    def start_child(self, spec: ProcessSpec, owner: ManagedProcess) -> ManagedProcess:
+    def start_child(self, spec: ProcessSpec, owner: SupervisedProcess) -> SupervisedProcess:
         """Start ``spec`` for ``owner`` now; :class:`RequestError` if it cannot be."""
 
-    def stop_child(self, process: ManagedProcess) -> None:
+    def stop_child(self, process: SupervisedProcess) -> None:
         """Stop ``process`` (SIGINT, then escalation) and never respawn it."""
 
     def log(self, level: str, logger: str, message: str) -> None:
@@ -58,9 +59,9 @@ class ChildHost(Protocol):
 @dataclass
 class _Connection:
     sock: socket.socket
-    owner: ManagedProcess | None
+    owner: SupervisedProcess | None
     peer: int
-    started: dict[int, ManagedProcess] = field(default_factory=dict)
+    started: dict[int, SupervisedProcess] = field(default_factory=dict)
 
 
 class ChildRequests:
@@ -171,7 +172,7 @@ class ChildRequests:
         running = [
             p
             for p in connection.started.values()
-            if not p.retired and (p.alive or p.state is State.BACKOFF)
+            if not p.lifecycle.retired and (p.alive or p.state is State.BACKOFF)
         ]
         if running and connection.owner is not None:
             self._host.log(
@@ -199,7 +200,7 @@ def _parse(data: bytes) -> dict[str, Any]:
     return request
 
 
-def _spec(request: dict[str, Any], owner: ManagedProcess) -> ProcessSpec:
+def _spec(request: dict[str, Any], owner: SupervisedProcess) -> ProcessSpec:
     """The process a start request asks for, with its owner's settings as defaults."""
     unknown = set(request) - _START_KEYS
     if unknown:

@@ -29,7 +29,7 @@ from typing import TYPE_CHECKING, Any
 from launchkit.runtime.hooks import SupervisorHooks
 
 if TYPE_CHECKING:
-    from launchkit.runtime.process import ManagedProcess
+    from launchkit.runtime.process import SupervisedProcess
 
 
 class EventWriter(SupervisorHooks):
@@ -62,7 +62,7 @@ class EventWriter(SupervisorHooks):
         """See :class:`SupervisorHooks`."""
         self._send({"event": "error", "message": message})
 
-    def process_started(self, process: ManagedProcess) -> None:
+    def process_started(self, process: SupervisedProcess) -> None:
         """See :class:`SupervisorHooks`."""
         spec = process.spec
         self._send(
@@ -79,15 +79,15 @@ class EventWriter(SupervisorHooks):
             }
         )
 
-    def process_output(self, process: ManagedProcess, stream: str, line: str) -> None:
+    def process_output(self, process: SupervisedProcess, stream: str, line: str) -> None:
         """See :class:`SupervisorHooks`."""
         self._send({"event": "output", "process": process.label, "stream": stream, "text": line})
 
-    def process_stopping(self, process: ManagedProcess) -> None:
+    def process_stopping(self, process: SupervisedProcess) -> None:
         """See :class:`SupervisorHooks`."""
         self._send({"event": "stopping", "process": process.label})
 
-    def process_exited(self, process: ManagedProcess, returncode: int) -> None:
+    def process_exited(self, process: SupervisedProcess, returncode: int) -> None:
         """See :class:`SupervisorHooks`."""
         self._send(
             {

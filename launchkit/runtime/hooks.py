@@ -9,7 +9,7 @@ from __future__ import annotations
 from typing import TYPE_CHECKING
 
 if TYPE_CHECKING:
-    from launchkit.runtime.process import ManagedProcess
+    from launchkit.runtime.process import SupervisedProcess
 
 
 class SupervisorHooks:
@@ -21,17 +21,17 @@ class SupervisorHooks:
     def launch_error(self, message: str) -> None:
         """Something failed while running (already reported on screen); shutdown follows."""
 
-    def process_started(self, process: ManagedProcess) -> None:
+    def process_started(self, process: SupervisedProcess) -> None:
         """``process`` has a new incarnation (a first start or a respawn) with a pid."""
 
-    def process_output(self, process: ManagedProcess, stream: str, line: str) -> None:
+    def process_output(self, process: SupervisedProcess, stream: str, line: str) -> None:
         """``process`` wrote ``line`` on ``stream`` (``stdout`` or ``stderr``)."""
 
-    def process_stopping(self, process: ManagedProcess) -> None:
+    def process_stopping(self, process: SupervisedProcess) -> None:
         """``process`` alone is being stopped on request (the launch goes on); its exit that
         follows is expected."""
 
-    def process_exited(self, process: ManagedProcess, returncode: int) -> None:
+    def process_exited(self, process: SupervisedProcess, returncode: int) -> None:
         """``process`` exited (negative ``returncode``: killed by that signal)."""
 
     def shutdown(self, reason: str) -> None:

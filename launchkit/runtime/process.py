@@ -1,36 +1,26 @@
-"""One supervised process: spawning it in its own process group, reading its output, and the
-lifecycle states it moves through.
+"""One supervised process as the operating system sees it: spawned in its own session (so its
+own process group), its output read line by line, its group signalled.
 
-States (supervisor/circus style)::
-
-    STARTING -> RUNNING -> EXITED            (exited on its own; may go to BACKOFF to respawn)
-                       \\-> STOPPING -> EXITED (we signalled it)
-    STARTING -> FAILED                        (could not be spawned)
-    BACKOFF  -> STARTING                      (respawn after respawn_delay)
+The supervisor makes processes through a factory (:data:`ProcessFactory`), so its loop can be
+unit-tested with processes that are not real (:class:`SupervisedProcess` is what it needs of
+one). Where each process is in its life is its :class:`~launchkit.runtime.lifecycle.Lifecycle`.
 """
 
 from __future__ import annotations
 
-import enum
 import errno
 import os
 import pty
+import shutil
 import signal
 import subprocess
+from collections.abc import Callable
 from dataclasses import dataclass, field
+from typing import Protocol
 
 from launchkit.description.process_spec import ProcessSpec
-
-
-class State(enum.Enum):
-    """Where a process is in its lifecycle."""
-
-    STARTING = "starting"
-    RUNNING = "running"
-    STOPPING = "stopping"
-    BACKOFF = "backoff"
-    EXITED = "exited"
-    FAILED = "failed"
+from launchkit.errors import LaunchFileError
+from launchkit.runtime.lifecycle import Escalation, Lifecycle, RespawnPolicy, State
 
 
 @dataclass
@@ -42,23 +32,84 @@ class Stream:
     pending: bytes = b""
 
 
-@dataclass
-class ManagedProcess:
-    """A process the supervisor owns: its spec, its current incarnation and its history."""
+def lifecycle_of(spec: ProcessSpec) -> Lifecycle:
+    """A new lifecycle with ``spec``'s stop timeouts and respawn settings."""
+    return Lifecycle(
+        Escalation.ros(spec.sigterm_timeout, spec.sigkill_timeout),
+        RespawnPolicy(spec.respawn, spec.respawn_delay, spec.respawn_max_retries),
+    )
+
+
+class SupervisedProcess(Protocol):
+    """What the supervisor (and its observers) use of a process."""
 
     spec: ProcessSpec
     label: str
     index: int
-    state: State = State.STARTING
+    lifecycle: Lifecycle
+    pidfd: int | None
+    streams: dict[int, Stream]
+
+    @property
+    def pid(self) -> int | None:
+        """The current incarnation's pid (and process group)."""
+
+    @property
+    def state(self) -> State:
+        """Where the process is in its life."""
+
+    @property
+    def alive(self) -> bool:
+        """Whether an incarnation is running (or being stopped)."""
+
+    def spawn(self) -> None:
+        """Start a new incarnation; ``OSError`` if it cannot be started."""
+
+    def read(self, fd: int) -> tuple[list[str], bool]:
+        """Complete lines available on ``fd``, and whether it reached EOF."""
+
+    def close_stream(self, fd: int) -> None:
+        """Forget and close one output stream."""
+
+    def close_pidfd(self) -> None:
+        """Close the exit notification fd (after it fired, or at the end)."""
+
+    def poll(self) -> int | None:
+        """Reap the incarnation if it exited; its return code."""
+
+    def signal_group(self, signum: int) -> None:
+        """Send ``signum`` to the incarnation's process group."""
+
+    def group_alive(self) -> bool:
+        """Whether anything is left in the incarnation's process group."""
+
+    def kill_leftovers(self) -> None:
+        """SIGKILL whatever is left in the incarnation's process group."""
+
+    def reap(self) -> None:
+        """Wait for the incarnation to exit (after it was killed)."""
+
+
+#: Makes a process to supervise from its spec, its label (``name-N``) and its index N.
+ProcessFactory = Callable[[ProcessSpec, str, int], SupervisedProcess]
+
+
+@dataclass
+class ManagedProcess:
+    """A real process the supervisor owns: its spec, its current incarnation, its lifecycle.
+    ``on_spawn`` is told each new process group (the orphan guard watches them)."""
+
+    spec: ProcessSpec
+    label: str
+    index: int
+    on_spawn: Callable[[int], None] = lambda _pgid: None
+    lifecycle: Lifecycle = field(init=False)
     popen: subprocess.Popen[bytes] | None = None
     pidfd: int | None = None
     streams: dict[int, Stream] = field(default_factory=dict)
-    returncode: int | None = None
-    retries: int = 0
-    signals_sent: list[int] = field(default_factory=list)
-    escalation_at: float | None = None
-    respawn_at: float | None = None
-    retired: bool = False  # stopped on request (not by a shutdown): never respawned
+
+    def __post_init__(self) -> None:
+        self.lifecycle = lifecycle_of(self.spec)
 
     @property
     def pid(self) -> int | None:
@@ -66,9 +117,14 @@ class ManagedProcess:
         return self.popen.pid if self.popen is not None else None
 
     @property
+    def state(self) -> State:
+        """Where the process is in its life."""
+        return self.lifecycle.state
+
+    @property
     def alive(self) -> bool:
         """Whether an incarnation is running (or being stopped)."""
-        return self.state in (State.RUNNING, State.STOPPING)
+        return self.lifecycle.alive
 
     def spawn(self) -> None:
         """Start the process in a new session (so its own process group); raises OSError."""
@@ -106,10 +162,7 @@ class ManagedProcess:
         if err_r is not None:
             self._add_stream(err_r, "stderr")
         self.pidfd = _pidfd_open(self.popen.pid)
-        self.returncode = None
-        self.signals_sent.clear()
-        self.escalation_at = None
-        self.state = State.RUNNING
+        self.on_spawn(self.popen.pid)
 
     def _add_stream(self, fd: int, kind: str) -> None:
         os.set_blocking(fd, False)
@@ -145,27 +198,69 @@ class ManagedProcess:
         if self.streams.pop(fd, None) is not None:
             os.close(fd)
 
+    def close_pidfd(self) -> None:
+        """Close the exit notification fd."""
+        if self.pidfd is not None:
+            os.close(self.pidfd)
+            self.pidfd = None
+
     def poll(self) -> int | None:
         """Reap the process if it exited; its return code (negative: killed by a signal)."""
         return None if self.popen is None else self.popen.poll()
 
     def signal_group(self, signum: int) -> None:
         """Send ``signum`` to the process's whole group (its ``sh -c`` children too)."""
-        if self.popen is None:
-            return
-        self.signals_sent.append(signum)
-        try:
-            os.killpg(self.popen.pid, signum)
-        except (ProcessLookupError, PermissionError):
-            pass
+        if self.popen is not None:
+            kill_group(self.popen.pid, signum)
+
+    def group_alive(self) -> bool:
+        """Whether anything is left in the process group (a grandchild after the exit)."""
+        return self.popen is not None and group_exists(self.popen.pid)
 
     def kill_leftovers(self) -> None:
         """SIGKILL whatever is left in the process group (orphaned grandchildren)."""
         if self.popen is not None:
-            try:
-                os.killpg(self.popen.pid, signal.SIGKILL)
-            except (ProcessLookupError, PermissionError):
-                pass
+            kill_group(self.popen.pid, signal.SIGKILL)
+
+    def reap(self) -> None:
+        """Wait for the incarnation to exit."""
+        if self.popen is not None:
+            self.popen.wait()
+
+
+def kill_group(pgid: int, signum: int) -> None:
+    """Send ``signum`` to process group ``pgid``; a group that is gone is no error."""
+    try:
+        os.killpg(pgid, signum)
+    except (ProcessLookupError, PermissionError):
+        pass
+
+
+def group_exists(pgid: int | None) -> bool:
+    """Whether process group ``pgid`` has a member."""
+    if not pgid:
+        return False
+    try:
+        os.killpg(pgid, 0)
+    except (ProcessLookupError, PermissionError):
+        return False
+    return True
+
+
+def check_program(spec: ProcessSpec) -> None:
+    """Fail before anything starts when a process's program does not exist."""
+    program = spec.cmd[0]
+    if "/" in program:
+        path = program if os.path.isabs(program) else os.path.join(spec.cwd or os.getcwd(), program)
+        if os.access(path, os.X_OK) and os.path.isfile(path):
+            return
+    elif shutil.which(program, path=spec.env.get("PATH", os.defpath)):
+        return
+    raise LaunchFileError(
+        f"program '{program}' of process '{spec.name}' not found",
+        spec.location,
+        expected="an executable file, or a program on the PATH",
+    )
 
 
 def _decode(data: bytes) -> str:

@@ -5,6 +5,11 @@ Everything happens on the main thread in :meth:`Supervisor.run`. Child exits are
 pidfds, output through non-blocking pipes, signals through a wakeup fd, all in one selector, so
 a lifecycle line is printed only after the child's remaining output: lines stay chronological.
 
+Each process's states, respawns and stop escalation are decided by its
+:class:`~launchkit.runtime.lifecycle.Lifecycle`; the supervisor carries out what it decides and
+says so on screen. Processes come from an injectable factory and time from an injectable clock,
+so the loop is unit-tested without real processes (``tests/engine/test_supervisor_loop.py``).
+
 Processes of the launch may also ask the supervisor, over the child-request socket it serves on
 the same loop (:mod:`launchkit.runtime.child_requests`), to start processes for them; those are
 supervised exactly like declared ones and stopped when their owner's connection closes.
@@ -12,31 +17,35 @@ supervised exactly like declared ones and stopped when their owner's connection 
 
 from __future__ import annotations
 
-import heapq
-import os
 import selectors
-import shutil
 import signal
 import time
 from collections.abc import Callable
 from typing import TYPE_CHECKING
 
 from launchkit.description.process_spec import ProcessSpec
-from launchkit.errors import LaunchFileError, LaunchkitError
+from launchkit.errors import LaunchkitError
 from launchkit.runtime.child_requests import ChildRequests, RequestError
 from launchkit.runtime.hooks import SupervisorHooks
+from launchkit.runtime.lifecycle import Respawn, SendSignal, State
 from launchkit.runtime.orphan_guard import OrphanGuard
 from launchkit.runtime.output import Output
-from launchkit.runtime.process import ManagedProcess, State, describe_exit
+from launchkit.runtime.process import (
+    ManagedProcess,
+    ProcessFactory,
+    SupervisedProcess,
+    check_program,
+    kill_group,
+)
+from launchkit.runtime.process_io import POLL_INTERVAL, ProcessIO
+from launchkit.runtime.process_report import ProcessReport
+from launchkit.runtime.signals import SignalPipe
+from launchkit.runtime.timers import TimerQueue
 
 if TYPE_CHECKING:
     from launchkit.description.launch_context import DelayedActions, LaunchContext, Snapshot
     from launchkit.description.launch_description import LaunchDescription
     from launchkit.runtime.network import NodeNetwork
-
-HANDLED_SIGNALS = (signal.SIGINT, signal.SIGTERM, signal.SIGHUP, signal.SIGQUIT)
-_ESCALATION = {signal.SIGINT: signal.SIGTERM, signal.SIGTERM: signal.SIGKILL}
-_POLL_INTERVAL = 0.05  # only when the kernel has no pidfd_open
 
 
 class Supervisor:
@@ -49,26 +58,29 @@ class Supervisor:
         network: NodeNetwork | None = None,
         clock: Callable[[], float] = time.monotonic,
         hooks: SupervisorHooks | None = None,
+        process_factory: ProcessFactory | None = None,
     ) -> None:
         self.output = output
         self.hooks = hooks or SupervisorHooks()
         self.network = network
         self.clock = clock
-        self.processes: list[ManagedProcess] = []
+        self.processes: list[SupervisedProcess] = []
         self.exit_code = 0
         self.shutting_down = False
         self._context: LaunchContext | None = None
         self._pending: list[ProcessSpec] | None = None
-        self._timers: list[tuple[float, int, DelayedActions, Snapshot]] = []
-        self._timer_seq = 0
+        self._timers = TimerQueue()
         self._interrupts = 0
         self._lingering: set[int] = set()
         self._guard = OrphanGuard()
         self._selector = selectors.DefaultSelector()
-        self._signal_r, self._signal_w = os.pipe()
-        self._needs_polling = False
+        self._signals = SignalPipe()
+        self._io = ProcessIO(self._selector, output, self.hooks, self._on_exit)
+        self._report = ProcessReport(output, self.hooks)
         self._requests: ChildRequests | None = None
-        self.on_started: Callable[[ManagedProcess], None] | None = None
+        self._new_process = process_factory or (
+            lambda spec, label, index: ManagedProcess(spec, label, index, self._guard.watch)
+        )
 
     # -- the Runner protocol (what actions call) ----------------------------------------------
 
@@ -83,8 +95,7 @@ class Supervisor:
 
     def schedule_timer(self, period: float, timer: DelayedActions, snapshot: Snapshot) -> None:
         """Fire ``timer`` after ``period`` seconds."""
-        self._timer_seq += 1
-        heapq.heappush(self._timers, (self.clock() + period, self._timer_seq, timer, snapshot))
+        self._timers.add(self.clock() + period, timer, snapshot)
 
     def request_shutdown(self, reason: str) -> None:
         """``<shutdown>``: stop everything."""
@@ -102,17 +113,17 @@ class Supervisor:
         Errors in the first pass (before anything started) propagate as exceptions.
         """
         self._context = context
-        previous = self._install_signals()
+        self._signals.install()
+        self._selector.register(self._signals.fd, selectors.EVENT_READ, self._read_signals)
         try:
             self._open_requests()
             self._first_pass(description, context)
             self.hooks.launch_ready()
-            self._loop()
+            while not self._done():
+                self.step(self._timeout())
         finally:
-            self._finish()
-            for signum, handler in previous.items():
-                signal.signal(signum, handler)
-            signal.set_wakeup_fd(-1)
+            self._signals.restore()
+            self.close()
         return self.exit_code
 
     def _open_requests(self) -> None:
@@ -148,20 +159,17 @@ class Supervisor:
                 break
             self._start_new(spec)
 
-    def _loop(self) -> None:
-        while not self._done():
-            timeout = self._timeout()
-            for key, _ in self._selector.select(timeout):
-                # An earlier event of this batch may have unregistered this fd (a process
-                # exited and its streams were closed; the number may even be reused already).
-                if self._selector.get_map().get(key.fd) is not key:
-                    continue
-                key.data()
-            if self._needs_polling:
-                for process in list(self.processes):
-                    if process.alive and process.pidfd is None and process.poll() is not None:
-                        self._on_exit(process)
-            self._run_due()
+    def step(self, timeout: float | None) -> None:
+        """One turn of the loop: wait up to ``timeout`` for output, exits, signals and
+        requests, handle them, then whatever is due (timers, escalations, respawns)."""
+        for key, _ in self._selector.select(timeout):
+            # An earlier event of this batch may have unregistered this fd (a process
+            # exited and its streams were closed; the number may even be reused already).
+            if self._selector.get_map().get(key.fd) is not key:
+                continue
+            key.data()
+        self._io.poll(self.processes)
+        self._run_due()
 
     def _done(self) -> bool:
         if any(p.alive for p in self.processes):
@@ -171,25 +179,23 @@ class Supervisor:
         return not self._timers
 
     def _timeout(self) -> float | None:
-        deadlines = [t[0] for t in self._timers[:1]]
-        deadlines += [p.escalation_at for p in self.processes if p.escalation_at is not None]
-        deadlines += [p.respawn_at for p in self.processes if p.respawn_at is not None]
+        candidates = [self._timers.next_due(), *(p.lifecycle.deadline for p in self.processes)]
+        deadlines = [d for d in candidates if d is not None]
         timeout = max(0.0, min(deadlines) - self.clock()) if deadlines else None
-        if self._needs_polling:
-            timeout = _POLL_INTERVAL if timeout is None else min(timeout, _POLL_INTERVAL)
+        if self._io.needs_polling:
+            timeout = POLL_INTERVAL if timeout is None else min(timeout, POLL_INTERVAL)
         return timeout
 
     def _run_due(self) -> None:
         now = self.clock()
-        while self._timers and self._timers[0][0] <= now:
-            _, _, timer, snapshot = heapq.heappop(self._timers)
-            self._fire(timer, snapshot)
+        while (due := self._timers.pop_due(now)) is not None:
+            self._fire(*due)
         for process in list(self.processes):
-            if process.escalation_at is not None and process.escalation_at <= now:
-                self._escalate(process)
-            if process.respawn_at is not None and process.respawn_at <= now:
-                process.respawn_at = None
+            effect = process.lifecycle.due(now)
+            if isinstance(effect, Respawn):
                 self._spawn(process)
+            elif effect is not None:
+                self._send(process, effect)
 
     def _fire(self, timer: DelayedActions, snapshot: Snapshot) -> None:
         context = self._context
@@ -223,117 +229,61 @@ class Supervisor:
         self.processes.append(process)
         self._spawn(process)
 
-    def _managed(self, spec: ProcessSpec) -> ManagedProcess:
+    def _managed(self, spec: ProcessSpec) -> SupervisedProcess:
         if self._requests is not None:
             spec.env.update(self._requests.environment())
         index = len(self.processes) + 1
-        return ManagedProcess(spec, f"{spec.name}-{index}", index)
+        return self._new_process(spec, f"{spec.name}-{index}", index)
 
-    def _spawn(self, process: ManagedProcess) -> None:
+    def _spawn(self, process: SupervisedProcess) -> None:
         try:
             process.spawn()
         except OSError as error:
-            process.state = State.FAILED
-            where = f" ({process.spec.location})" if process.spec.location else ""
-            message = f"could not start process: {error.strerror}: '{process.spec.cmd[0]}'{where}"
-            self.log("ERROR", process.label, message)
-            self.hooks.launch_error(f"{process.label}: {message}")
+            process.lifecycle.failed()
+            self._report.could_not_start(process, error)
             self.exit_code = self.exit_code or 1
             self.begin_shutdown("a process could not be started", level="ERROR")
             return
+        process.lifecycle.started()
         self._watch(process)
 
-    def _watch(self, process: ManagedProcess) -> None:
-        assert process.popen is not None
-        self._guard.watch(process.popen.pid)
-        self.log("INFO", process.label, f"process started with pid [{process.pid}]")
-        for fd in process.streams:
-            self._selector.register(fd, selectors.EVENT_READ, _bind(self._on_output, process, fd))
-        if process.pidfd is not None:
-            self._selector.register(
-                process.pidfd, selectors.EVENT_READ, _bind(self._on_exit, process)
-            )
-        else:
-            self._needs_polling = True
-        self.hooks.process_started(process)
-        if self.on_started is not None:
-            self.on_started(process)
+    def _watch(self, process: SupervisedProcess) -> None:
+        self._report.started(process)
+        self._io.watch(process)
 
-    def _on_output(self, process: ManagedProcess, fd: int) -> None:
-        lines, eof = process.read(fd)
-        kind = process.streams[fd].kind
-        for line in lines:
-            self.output.child_line(process.label, process.index, line, process.spec.output, kind)
-            self.hooks.process_output(process, kind, line)
-        if eof:
-            self._selector.unregister(fd)
-            process.close_stream(fd)
-
-    def _on_exit(self, process: ManagedProcess) -> None:
+    def _on_exit(self, process: SupervisedProcess) -> None:
         code = process.poll()
         if code is None:
             return
-        if process.pidfd is not None:
-            self._selector.unregister(process.pidfd)
-            os.close(process.pidfd)
-            process.pidfd = None
-        for fd in list(process.streams):
-            self._on_output(process, fd)  # print what it wrote before saying it exited
-        process.returncode = code
-        stopping = process.state is State.STOPPING
-        process.state = State.EXITED
-        process.escalation_at = None
-        self._report_exit(process, code, stopping)
-        self.hooks.process_exited(process, code)
-        if _group_exists(process.pid):
+        self._io.exited(process)  # what it wrote is printed before saying it exited
+        required = process.spec.on_exit_shutdown
+        outcome = process.lifecycle.exited(
+            code, self.clock(), respawn_allowed=not (self.shutting_down or required)
+        )
+        self._report.exited(process, code, outcome)
+        if process.group_alive():
             if self.shutting_down:
                 process.kill_leftovers()
             else:
                 self._lingering.add(process.pid or 0)
         if self.shutting_down:
             return
-        if process.spec.on_exit_shutdown:
+        if required:
             if code != 0:
                 self.exit_code = self.exit_code or (code if code > 0 else 128 - code)
             self.begin_shutdown(
                 f"process[{process.label}] was required: shutting down launched system"
             )
-        elif process.spec.respawn and not process.retired:
-            self._maybe_respawn(process)
-
-    def _report_exit(self, process: ManagedProcess, code: int, stopping: bool) -> None:
-        pid = process.pid
-        if code == 0:
-            self.log("INFO", process.label, f"process has finished cleanly [pid {pid}]")
-        elif stopping and code < 0 and -code in process.signals_sent:
-            self.log(
-                "INFO", process.label, f"process has finished [pid {pid}, {describe_exit(code)}]"
-            )
         else:
-            cmd = process.spec.command_line()
-            self.log(
-                "ERROR",
-                process.label,
-                f"process has died [pid {pid}, {describe_exit(code)}, cmd '{cmd}'].",
-            )
-
-    def _maybe_respawn(self, process: ManagedProcess) -> None:
-        limit = process.spec.respawn_max_retries
-        if 0 <= limit <= process.retries:
-            self.log("WARNING", process.label, f"not respawning: {limit} retries used")
-            return
-        process.retries += 1
-        process.state = State.BACKOFF
-        process.respawn_at = self.clock() + process.spec.respawn_delay
-        self.log("INFO", process.label, f"respawning in {process.spec.respawn_delay:g} s")
+            self._report.respawn(process, outcome)
 
     # -- processes started on request (the ChildHost protocol of child_requests) -------------
 
-    def owner_of(self, pid: int) -> ManagedProcess | None:
+    def owner_of(self, pid: int) -> SupervisedProcess | None:
         """The running process of the launch whose pid (and so session) is ``pid``."""
         return next((p for p in self.processes if p.alive and p.pid == pid), None)
 
-    def start_child(self, spec: ProcessSpec, owner: ManagedProcess) -> ManagedProcess:
+    def start_child(self, spec: ProcessSpec, owner: SupervisedProcess) -> SupervisedProcess:
         """Start ``spec`` at ``owner``'s request; :class:`RequestError` if it cannot start
         (a refused request never stops the launch)."""
         if self.shutting_down:
@@ -347,20 +297,18 @@ class Supervisor:
             process.spawn()
         except OSError as error:
             raise RequestError(f"could not start '{spec.cmd[0]}': {error.strerror}") from None
+        process.lifecycle.started()
         self.processes.append(process)
         self.log("INFO", process.label, f"started at the request of {owner.label}")
         self._watch(process)
         return process
 
-    def stop_child(self, process: ManagedProcess) -> None:
+    def stop_child(self, process: SupervisedProcess) -> None:
         """Stop a process started on request, as a shutdown would, and never respawn it."""
-        process.retired = True
-        if process.state is State.BACKOFF:
-            process.state = State.EXITED
-            process.respawn_at = None
-        elif process.state is State.RUNNING:
+        effect = process.lifecycle.stop(self.clock(), retire=True)
+        if effect is not None:
             self.hooks.process_stopping(process)
-            self._send(process, signal.SIGINT)
+            self._send(process, effect)
 
     # -- shutdown ----------------------------------------------------------------------------
 
@@ -371,55 +319,24 @@ class Supervisor:
         self.shutting_down = True
         self.log(level, "launch", reason)
         self.hooks.shutdown(reason)
-        self._timers = [t for t in self._timers if not t[2].cancel_on_shutdown]
-        heapq.heapify(self._timers)
+        self._timers.cancel_on_shutdown()
+        now = self.clock()
         for process in self.processes:
-            if process.state is State.BACKOFF:
-                process.state = State.EXITED
-                process.respawn_at = None
-            if process.state is State.RUNNING:
-                self._send(process, signal.SIGINT)
+            effect = process.lifecycle.stop(now)
+            if effect is not None:
+                self._send(process, effect)
 
-    def _send(self, process: ManagedProcess, signum: int) -> None:
-        name = signal.Signals(signum).name
-        self.log("INFO", process.label, f"sending signal '{name}' to process[{process.label}]")
-        process.signal_group(signum)
-        process.state = State.STOPPING
-        timeout = {
-            signal.SIGINT: process.spec.sigterm_timeout,
-            signal.SIGTERM: process.spec.sigkill_timeout,
-        }.get(signal.Signals(signum))
-        process.escalation_at = None if timeout is None else self.clock() + timeout
-
-    def _escalate(self, process: ManagedProcess, announce: bool = True) -> None:
-        last = signal.Signals(process.signals_sent[-1]) if process.signals_sent else signal.SIGINT
-        following = _ESCALATION.get(last)
-        if following is None:
-            process.escalation_at = None
-            return
-        if announce:
-            waited = (
-                process.spec.sigterm_timeout
-                if last is signal.SIGINT
-                else process.spec.sigkill_timeout
-            )
-            self.log(
-                "ERROR",
-                process.label,
-                f"process[{process.label}] failed to terminate '{waited:g}' seconds after "
-                f"receiving '{last.name}', escalating to '{following.name}'",
-            )
-        self._send(process, following)
+    def _send(self, process: SupervisedProcess, effect: SendSignal) -> None:
+        """Carry out a signal the lifecycle decided on, saying so as ROS does."""
+        self._report.signal(process, effect)
+        process.signal_group(effect.signum)
 
     def _read_signals(self) -> None:
-        try:
-            data = os.read(self._signal_r, 512)
-        except BlockingIOError:
-            return
-        for signum in data:
-            self._on_signal(signum)
+        for signum in self._signals.pending():
+            self.handle_signal(signum)
 
-    def _on_signal(self, signum: int) -> None:
+    def handle_signal(self, signum: int) -> None:
+        """A signal to the launcher: the first shuts down, the next ones escalate at once."""
         self._interrupts += 1
         name = signal.Signals(signum).name
         if self._interrupts == 1:
@@ -434,36 +351,23 @@ class Supervisor:
         stopping = [p for p in self.processes if p.alive]
         waiting = ", ".join(f"{p.label} [pid {p.pid}]" for p in stopping) or "nothing"
         self.log("WARNING", "launch", f"{name} again: escalating now; still waiting for {waiting}")
+        now = self.clock()
         for process in stopping:
-            self._escalate(process, announce=False)
+            effect = process.lifecycle.escalate(now)
+            if effect is not None:
+                self._send(process, effect)
 
-    def _install_signals(self) -> dict[int, signal._HANDLER]:
-        os.set_blocking(self._signal_r, False)
-        os.set_blocking(self._signal_w, False)
-        signal.set_wakeup_fd(self._signal_w, warn_on_full_buffer=False)
-        self._selector.register(self._signal_r, selectors.EVENT_READ, self._read_signals)
-        previous: dict[int, signal._HANDLER] = {}
-        for signum in HANDLED_SIGNALS:
-            previous[signum] = signal.signal(signum, _ignore)
-        return previous
-
-    def _finish(self) -> None:
+    def close(self) -> None:
         """Last resort: SIGKILL every group still around, reap, release everything."""
         for process in self.processes:
             if process.alive:
                 process.kill_leftovers()
-                if process.popen is not None:
-                    process.popen.wait()
+                process.reap()
             for fd in list(process.streams):
                 process.close_stream(fd)
-            if process.pidfd is not None:
-                os.close(process.pidfd)
-                process.pidfd = None
+            process.close_pidfd()
         for pgid in self._lingering:
-            try:
-                os.killpg(pgid, signal.SIGKILL)
-            except (ProcessLookupError, PermissionError):
-                pass
+            kill_group(pgid, signal.SIGKILL)
         self._guard.dismiss()
         if self._requests is not None:
             self._requests.close()
@@ -473,39 +377,4 @@ class Supervisor:
         if self._context is not None:
             self._context.cleanup()
         self._selector.close()
-        os.close(self._signal_r)
-        os.close(self._signal_w)
-
-
-def _bind(function: Callable[..., None], *args: object) -> Callable[[], None]:
-    return lambda: function(*args)
-
-
-def _ignore(signum: int, frame: object) -> None:
-    """Python-level handler: the wakeup fd carries the signal to the loop."""
-
-
-def _group_exists(pgid: int | None) -> bool:
-    if not pgid:
-        return False
-    try:
-        os.killpg(pgid, 0)
-    except (ProcessLookupError, PermissionError):
-        return False
-    return True
-
-
-def check_program(spec: ProcessSpec) -> None:
-    """Fail before anything starts when a process's program does not exist."""
-    program = spec.cmd[0]
-    if "/" in program:
-        path = program if os.path.isabs(program) else os.path.join(spec.cwd or os.getcwd(), program)
-        if os.access(path, os.X_OK) and os.path.isfile(path):
-            return
-    elif shutil.which(program, path=spec.env.get("PATH", os.defpath)):
-        return
-    raise LaunchFileError(
-        f"program '{program}' of process '{spec.name}' not found",
-        spec.location,
-        expected="an executable file, or a program on the PATH",
-    )
+        self._signals.close()
