@@ -11,9 +11,13 @@ import pytest
 import yaml
 
 from launchkit.packages import PackageIndex
-from launchkit.stock.gazebo_ros.camera_node import CameraNodeParams, camera_command
+from launchkit.stock.gazebo_ros.camera_node import CameraNodeParams
 from launchkit.stock.gazebo_ros.diff_drive import DiffDriveParams
-from launchkit.stock.gazebo_ros.plugin_processes import diff_drive_command
+from launchkit.stock.gazebo_ros.plugin_processes import (
+    CAMERA_MODULE,
+    DIFF_DRIVE_MODULE,
+    plugin_command,
+)
 from launchkit.stock.gazebo_ros.server import UsageError, parse_server_args
 from launchkit.stock.gazebo_ros.sim.model import PluginSpec, RosOptions
 from launchkit.stock.gazebo_ros.spawn_entity import SpawnError, parse_args
@@ -99,7 +103,9 @@ def test_diff_drive_child_command_line(tmp_path: Path) -> None:
     )
     params = DiffDriveParams("l", "r", wheel_separation=0.5)
     params_file = tmp_path / "p.yaml"
-    argv = diff_drive_command("bot", plugin, params, params_file)
+    argv = plugin_command(
+        DIFF_DRIVE_MODULE, "bot", plugin, params.as_parameters(), params_file, remap=True
+    )
     assert argv[:3] == [sys.executable, "-m", "launchkit.stock.gazebo_ros.diff_drive_node"]
     assert argv[3:] == [
         "--ros-args",
@@ -126,7 +132,9 @@ def test_camera_child_command_line(tmp_path: Path) -> None:
     )
     params = CameraNodeParams("camera1", "<robot/>", "/worlds/obstacles.world", egl=False)
     params_file = tmp_path / "p.yaml"
-    argv = camera_command("bot", plugin, params, params_file)
+    argv = plugin_command(
+        CAMERA_MODULE, "bot", plugin, params.as_parameters(), params_file, remap=False
+    )
     assert argv == [
         sys.executable,
         "-m",

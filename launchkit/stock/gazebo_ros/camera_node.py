@@ -22,15 +22,12 @@ from __future__ import annotations
 import importlib
 import sys
 from dataclasses import asdict, dataclass
-from pathlib import Path
 from typing import Any
-
-import yaml
 
 from launchkit.stock.gazebo_ros import messages
 from launchkit.stock.gazebo_ros._shutdown import shutdown_within
 from launchkit.stock.gazebo_ros.sim.engine import Simulation, SimulationError
-from launchkit.stock.gazebo_ros.sim.model import ModelError, PluginSpec, SensorSpec, parse_model
+from launchkit.stock.gazebo_ros.sim.model import ModelError, SensorSpec, parse_model
 from launchkit.stock.gazebo_ros.sim.quiet import silence_c_stdout
 from launchkit.stock.gazebo_ros.sim.sensors import Camera, CameraConfig, RateGate
 from launchkit.stock.gazebo_ros.sim.world import load_world, resolve_world
@@ -56,23 +53,6 @@ class CameraNodeParams:
     def as_parameters(self) -> dict[str, object]:
         """The ROS parameters, by name."""
         return asdict(self)
-
-
-def camera_command(
-    entity: str, plugin: PluginSpec, params: CameraNodeParams, params_file: Path
-) -> list[str]:
-    """The command line of the camera node for ``plugin`` of ``entity``.
-
-    The plugin's remappings are not passed on: :class:`CameraConfig` has already applied them to
-    the (absolute) topic names.
-    """
-    values: dict[str, object] = {"entity": entity, **params.as_parameters()}
-    params_file.write_text(yaml.safe_dump({"/**": {"ros__parameters": values}}))
-    argv = [sys.executable, "-m", "launchkit.stock.gazebo_ros.camera_node", "--ros-args"]
-    argv += ["-r", f"__node:={plugin.name}"]
-    if plugin.ros.namespace:
-        argv += ["-r", f"__ns:=/{plugin.ros.namespace.strip('/')}"]
-    return [*argv, "--params-file", str(params_file)]
 
 
 def _msg(package: str, name: str) -> Any:

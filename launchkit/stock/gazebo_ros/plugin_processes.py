@@ -6,38 +6,45 @@ asks the launcher to start it (over the child-request socket, see
 :mod:`launchkit.runtime.supervisor_client`): it is then a process of the launch like any other,
 with its own ``[name-N]`` output prefix, log files, respawn after :data:`RESTART_DELAY`,
 ordered stop and the launcher's orphan guard, and the launcher stops it when the server goes.
-Run any other way (``launchkit exec``, by hand), the server supervises it itself: a new session
-(its own process group), death with the server (PR_SET_PDEATHSIG), restart after
-:data:`RESTART_DELAY` when it dies, SIGTERM then SIGKILL on stop; its output then goes to the
-server's.
+Run any other way (``launchkit exec``, by hand), the server supervises it itself, with the
+launcher's lifecycle state machine (:mod:`launchkit.runtime.lifecycle`): a new session (its own
+process group), death with the server (PR_SET_PDEATHSIG), restart after :data:`RESTART_DELAY`
+when it dies, SIGTERM then SIGKILL after :data:`STOP_TIMEOUT` on stop; its output then goes to
+the server's.
 
-Every plugin child goes through :meth:`PluginProcesses._start_child` (a name and an argv), which
-picks the launcher or the fallback.
+Every plugin child's command line comes from :func:`plugin_command`, and every child goes
+through :meth:`PluginProcesses._start_child` (a name and an argv), which picks the launcher or
+the fallback.
 """
 
 from __future__ import annotations
 
 import contextlib
 import ctypes
-import os
 import signal
 import subprocess
 import sys
 import tempfile
 import time
-from collections.abc import Callable
+from collections.abc import Callable, Mapping
 from dataclasses import dataclass, field
 from pathlib import Path
 
 import yaml
 
+from launchkit.runtime.lifecycle import Escalation, Lifecycle, Respawn, RespawnPolicy, SendSignal
+from launchkit.runtime.process import kill_group
 from launchkit.runtime.supervisor_client import SupervisorClient, SupervisorError
-from launchkit.stock.gazebo_ros.camera_node import CameraNodeParams, camera_command
+from launchkit.stock.gazebo_ros.camera_node import CameraNodeParams
 from launchkit.stock.gazebo_ros.diff_drive import DiffDriveParams
 from launchkit.stock.gazebo_ros.sim.model import PluginSpec
 
 RESTART_DELAY = 1.0
 STOP_TIMEOUT = 3.0
+#: How the server stops a plugin node it runs itself.
+FALLBACK_STOP = Escalation(((signal.SIGTERM, STOP_TIMEOUT), (signal.SIGKILL, None)))
+DIFF_DRIVE_MODULE = "launchkit.stock.gazebo_ros.diff_drive_node"
+CAMERA_MODULE = "launchkit.stock.gazebo_ros.camera_node"
 _PR_SET_PDEATHSIG = 1
 
 
@@ -47,18 +54,26 @@ def _die_with_parent() -> None:
         ctypes.CDLL(None, use_errno=True).prctl(_PR_SET_PDEATHSIG, signal.SIGTERM)
 
 
-def diff_drive_command(
-    entity: str, plugin: PluginSpec, params: DiffDriveParams, params_file: Path
+def plugin_command(
+    module: str,
+    entity: str,
+    plugin: PluginSpec,
+    parameters: Mapping[str, object],
+    params_file: Path,
+    *,
+    remap: bool,
 ) -> list[str]:
-    """The command line of the diff drive node for ``plugin`` of ``entity``."""
-    values: dict[str, object] = {"entity": entity, **params.as_parameters()}
+    """The command line of the node process that runs ``plugin`` of ``entity``: ``python -m
+    module`` named after the plugin, in its ``<ros>`` namespace, with ``parameters`` (and the
+    entity's name) written to ``params_file``. ``remap``: pass the block's remappings on (the
+    camera has applied them to its topic names already)."""
+    values: dict[str, object] = {"entity": entity, **parameters}
     params_file.write_text(yaml.safe_dump({"/**": {"ros__parameters": values}}))
-    argv = [sys.executable, "-m", "launchkit.stock.gazebo_ros.diff_drive_node", "--ros-args"]
-    argv += ["-r", f"__node:={plugin.name}"]
+    argv = [sys.executable, "-m", module, "--ros-args", "-r", f"__node:={plugin.name}"]
     if plugin.ros.namespace:
         argv += ["-r", f"__ns:=/{plugin.ros.namespace.strip('/')}"]
     argv += ["--params-file", str(params_file)]
-    for source, target in plugin.ros.remappings:
+    for source, target in plugin.ros.remappings if remap else ():
         argv += ["-r", f"{source}:={target}"]
     return argv
 
@@ -66,14 +81,15 @@ def diff_drive_command(
 @dataclass
 class Child:
     """One plugin child: its command, and either the launcher's id for it or, when the server
-    supervises it itself, its process and when it may restart."""
+    supervises it itself, its process and its lifecycle."""
 
     name: str
     argv: list[str]
     launcher_id: int | None = None
     process: subprocess.Popen[bytes] | None = None
-    restart_at: float = 0.0
-    restarts: int = 0
+    lifecycle: Lifecycle = field(
+        default_factory=lambda: Lifecycle(FALLBACK_STOP, RespawnPolicy(True, RESTART_DELAY))
+    )
 
 
 @dataclass
@@ -91,9 +107,11 @@ class PluginProcesses:
     def start_diff_drive(self, entity: str, plugin: PluginSpec, params: DiffDriveParams) -> None:
         """Start the diff drive node of ``plugin`` for ``entity``."""
         params_file = Path(self._tmp.name) / f"{entity}-{plugin.name}.yaml"
-        self._start_child(
-            entity, plugin.name, diff_drive_command(entity, plugin, params, params_file)
+        parameters = params.as_parameters()
+        argv = plugin_command(
+            DIFF_DRIVE_MODULE, entity, plugin, parameters, params_file, remap=True
         )
+        self._start_child(entity, plugin.name, argv)
 
     def _start_child(self, entity: str, name: str, argv: list[str]) -> None:
         """Start one plugin child of ``entity``: by the launcher if there is one, else here."""
@@ -125,13 +143,17 @@ class PluginProcesses:
 
     def start_camera(self, entity: str, plugin: PluginSpec, params: CameraNodeParams) -> None:
         """Start the camera node of ``plugin`` for ``entity`` (it renders in its own process)."""
-        params_file = Path(self._tmp.name) / f"{entity}-{plugin.name}.yaml"
-        self._start_child(entity, plugin.name, camera_command(entity, plugin, params, params_file))
+        file = Path(self._tmp.name) / f"{entity}-{plugin.name}.yaml"
+        argv = plugin_command(
+            CAMERA_MODULE, entity, plugin, params.as_parameters(), file, remap=False
+        )
+        self._start_child(entity, plugin.name, argv)
 
     def _spawn(self, child: Child) -> None:
         child.process = subprocess.Popen(
             child.argv, start_new_session=True, preexec_fn=_die_with_parent
         )
+        child.lifecycle.started()
         self.log(f"started plugin node '{child.name}' (pid {child.process.pid})")
 
     def supervise(self) -> None:
@@ -140,18 +162,17 @@ class PluginProcesses:
         now = time.monotonic()
         for children in self.children.values():
             for child in children:
-                if child.launcher_id is not None:
-                    continue
                 process = child.process
-                if process is not None and process.poll() is not None:
+                if child.launcher_id is not None or process is None:
+                    continue
+                code = process.poll() if child.lifecycle.alive else None
+                if code is not None:
+                    outcome = child.lifecycle.exited(code, now)
                     self.log(
-                        f"plugin node '{child.name}' exited with {process.returncode}; "
-                        f"restarting in {RESTART_DELAY:.0f} s"
+                        f"plugin node '{child.name}' exited with {code}; "
+                        f"restarting in {outcome.respawn_in or 0:.0f} s"
                     )
-                    child.process = None
-                    child.restart_at = now + RESTART_DELAY
-                elif process is None and now >= child.restart_at:
-                    child.restarts += 1
+                elif isinstance(child.lifecycle.due(now), Respawn):
                     self._spawn(child)
 
     def stop_entity(self, entity: str) -> None:
@@ -179,15 +200,24 @@ class PluginProcesses:
 
 
 def _stop_all(children: list[Child]) -> None:
-    running = [c.process for c in children if c.process is not None and c.process.poll() is None]
-    for process in running:
-        with contextlib.suppress(ProcessLookupError):
-            os.killpg(process.pid, signal.SIGTERM)
-    deadline = time.monotonic() + STOP_TIMEOUT
-    for process in running:
-        try:
-            process.wait(max(0.0, deadline - time.monotonic()))
-        except subprocess.TimeoutExpired:
-            with contextlib.suppress(ProcessLookupError):
-                os.killpg(process.pid, signal.SIGKILL)
-            process.wait()
+    """Stop the children the server runs itself, all at once, escalating each on its own
+    deadline (SIGTERM, then SIGKILL)."""
+    now = time.monotonic()
+    running: list[tuple[Child, subprocess.Popen[bytes]]] = []
+    for child in children:
+        effect = child.lifecycle.stop(now, retire=True)
+        if effect is not None and child.process is not None and child.process.poll() is None:
+            kill_group(child.process.pid, effect.signum)
+            running.append((child, child.process))
+    for child, process in running:
+        while True:
+            deadline = child.lifecycle.deadline
+            try:
+                process.wait(None if deadline is None else max(0.0, deadline - time.monotonic()))
+            except subprocess.TimeoutExpired:
+                escalation = child.lifecycle.due(time.monotonic())
+                if isinstance(escalation, SendSignal):
+                    kill_group(process.pid, escalation.signum)
+                continue
+            child.lifecycle.exited(process.returncode, time.monotonic())
+            break
