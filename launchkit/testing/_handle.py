@@ -13,6 +13,7 @@ from collections.abc import Callable, Mapping
 from pathlib import Path
 from typing import TYPE_CHECKING, Any, TypeVar
 
+from launchkit.runtime.lifecycle import Escalation, escalate_until_exited
 from launchkit.runtime.network import ROUTER_ENV
 from launchkit.runtime.process import describe_exit
 from launchkit.testing import _procscan
@@ -80,6 +81,7 @@ class LaunchHandle:
         self.state = LaunchState()
         self._probe: TopicProbe | None = None
         self.stop_notes: list[str] = []
+        self._stop_waits: list[float] = []  # scaled seconds each stop signal was given
         self._result: LaunchResult | None = None
         environment = {
             **os.environ,
@@ -349,18 +351,11 @@ class LaunchHandle:
             state.stopping = True
             slowest = max((r.escalation for r in state.processes.values()), default=0.0)
         if self._popen.poll() is None:
-            self._signal_launcher(signal.SIGINT)
-            budget = Deadline(slowest + _STOP_MARGIN if timeout is None else timeout)
-            if not self._await_launcher(budget):
-                self.stop_notes.append(
-                    f"the launcher was still running {budget.seconds:g} s after SIGINT: "
-                    "sent SIGTERM to it and to every process group of the launch"
-                )
-                self._signal_launcher(signal.SIGTERM)
-                _procscan.kill_groups(state.all_pids(), signal.SIGTERM)
-                if not self._await_launcher(Deadline(_AFTER_SIGTERM)):
-                    self.stop_notes.append("the launcher still ran after SIGTERM: SIGKILL")
-                    _procscan.kill_groups([self.pid, *state.all_pids()], signal.SIGKILL)
+            budget = slowest + _STOP_MARGIN if timeout is None else timeout
+            ladder = ((signal.SIGINT, budget), (signal.SIGTERM, _AFTER_SIGTERM))
+            escalate_until_exited(
+                Escalation((*ladder, (signal.SIGKILL, None))), self._stop_signal, self._stop_wait
+            )
         self._popen.wait()
         self._reader.join(Deadline(_VANISH).seconds)
         self._channel.close()
@@ -368,6 +363,32 @@ class LaunchHandle:
         leftovers = _procscan.sweep([self.pid, *state.all_pids()], Deadline(_VANISH))
         self._result = self._make_result()
         return self._result, leftovers
+
+    def _stop_signal(self, signum: signal.Signals) -> None:
+        """One step of the stop: SIGINT to the launcher (it stops every process itself); if it
+        hangs, SIGTERM to it and to every process group of the launch; then SIGKILL to all."""
+        if signum == signal.SIGINT:
+            self._signal_launcher(signum)
+            return
+        pids = self.state.all_pids()
+        if signum == signal.SIGTERM:
+            self.stop_notes.append(
+                f"the launcher was still running {self._stop_waits[-1]:g} s after SIGINT: "
+                "sent SIGTERM to it and to every process group of the launch"
+            )
+            self._signal_launcher(signum)
+        else:
+            self.stop_notes.append("the launcher still ran after SIGTERM: SIGKILL")
+            pids = [self.pid, *pids]
+        _procscan.kill_groups(pids, signum)
+
+    def _stop_wait(self, seconds: float | None) -> bool:
+        """Whether the launcher exits within ``seconds`` (scaled); None: reaped afterwards."""
+        if seconds is None:
+            return True
+        deadline = Deadline(seconds)
+        self._stop_waits.append(deadline.seconds)
+        return self._await_launcher(deadline)
 
     def _signal_launcher(self, signum: int) -> None:
         try:
