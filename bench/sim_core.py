@@ -18,7 +18,7 @@ import time
 from datetime import datetime, timezone
 from pathlib import Path
 
-from launchkit.stock.gazebo_ros.diff_drive import DiffDriveController
+from launchkit.stock.gazebo_ros.sim.diff_drive import DiffDriveController
 from launchkit.stock.gazebo_ros.sim.engine import Simulation
 from launchkit.stock.gazebo_ros.sim.plugins import load_plugins
 from launchkit.stock.gazebo_ros.sim.quiet import silence_c_stdout

@@ -12,13 +12,13 @@ import yaml
 
 from launchkit.packages import PackageIndex
 from launchkit.stock.gazebo_ros.camera_node import CameraNodeParams
-from launchkit.stock.gazebo_ros.diff_drive import DiffDriveParams
 from launchkit.stock.gazebo_ros.plugin_processes import (
     CAMERA_MODULE,
     DIFF_DRIVE_MODULE,
     plugin_command,
 )
 from launchkit.stock.gazebo_ros.server import UsageError, parse_server_args
+from launchkit.stock.gazebo_ros.sim.diff_drive import DiffDriveParams
 from launchkit.stock.gazebo_ros.sim.model import PluginSpec, RosOptions
 from launchkit.stock.gazebo_ros.spawn_entity import SpawnError, parse_args
 

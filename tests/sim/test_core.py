@@ -9,7 +9,7 @@ from pathlib import Path
 
 import pytest
 
-from launchkit.stock.gazebo_ros.diff_drive import DiffDriveController, yaw_of
+from launchkit.stock.gazebo_ros.sim.diff_drive import DiffDriveController, yaw_of
 from launchkit.stock.gazebo_ros.sim.engine import Entity, Simulation, SimulationError
 from launchkit.stock.gazebo_ros.sim.model import ModelError
 from launchkit.stock.gazebo_ros.sim.plugins import EntityPlugins, load_plugins

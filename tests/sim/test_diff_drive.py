@@ -6,7 +6,7 @@ import math
 
 import pytest
 
-from launchkit.stock.gazebo_ros.diff_drive import (
+from launchkit.stock.gazebo_ros.sim.diff_drive import (
     ENCODER,
     BaseState,
     DiffDriveConfigError,

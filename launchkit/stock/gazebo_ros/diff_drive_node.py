@@ -15,7 +15,7 @@ from typing import Any
 
 from launchkit.stock.gazebo_ros import messages
 from launchkit.stock.gazebo_ros._shutdown import shutdown_within
-from launchkit.stock.gazebo_ros.diff_drive import (
+from launchkit.stock.gazebo_ros.sim.diff_drive import (
     BaseState,
     DiffDriveConfigError,
     DiffDriveController,

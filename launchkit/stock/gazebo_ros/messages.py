@@ -12,7 +12,7 @@ from typing import Any
 
 import numpy as np
 
-from launchkit.stock.gazebo_ros.diff_drive import Odometry
+from launchkit.stock.gazebo_ros.sim.diff_drive import Odometry
 from launchkit.stock.gazebo_ros.sim.sensors import CameraConfig, LidarConfig
 
 

@@ -36,7 +36,7 @@ from launchkit.runtime.lifecycle import Escalation, Lifecycle, Respawn, RespawnP
 from launchkit.runtime.process import kill_group
 from launchkit.runtime.supervisor_client import SupervisorClient, SupervisorError
 from launchkit.stock.gazebo_ros.camera_node import CameraNodeParams
-from launchkit.stock.gazebo_ros.diff_drive import DiffDriveParams
+from launchkit.stock.gazebo_ros.sim.diff_drive import DiffDriveParams
 from launchkit.stock.gazebo_ros.sim.model import PluginSpec
 
 RESTART_DELAY = 1.0

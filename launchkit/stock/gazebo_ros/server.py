@@ -351,7 +351,7 @@ class SimServer:
 
 
 def _ground_truth(now: float, root: str, base: Any) -> Any:
-    from launchkit.stock.gazebo_ros.diff_drive import Odometry
+    from launchkit.stock.gazebo_ros.sim.diff_drive import Odometry
 
     zeros = tuple(0.0 for _ in range(36))
     return Odometry(

@@ -19,7 +19,7 @@ import time
 from pathlib import Path
 from typing import Any
 
-from launchkit.stock.gazebo_ros.diff_drive import quaternion_from_yaw
+from launchkit.stock.gazebo_ros.sim.diff_drive import quaternion_from_yaw
 
 
 class SpawnError(Exception):

@@ -16,7 +16,7 @@ from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
 
-from launchkit.stock.gazebo_ros.diff_drive import BaseState
+from launchkit.stock.gazebo_ros.sim.diff_drive import BaseState
 from launchkit.stock.gazebo_ros.sim.materials import material_rgba
 from launchkit.stock.gazebo_ros.sim.model import ModelError, ModelSpec, parse_model
 from launchkit.stock.gazebo_ros.sim.world import Shape, WorldSpec

@@ -6,7 +6,7 @@ import math
 from collections.abc import Callable
 from dataclasses import dataclass, field
 
-from launchkit.stock.gazebo_ros.diff_drive import DiffDriveParams, wheel_geometry_warnings
+from launchkit.stock.gazebo_ros.sim.diff_drive import DiffDriveParams, wheel_geometry_warnings
 from launchkit.stock.gazebo_ros.sim.engine import Entity, Simulation, SimulationError
 from launchkit.stock.gazebo_ros.sim.joint_states import JOINT_STATE_PUBLISHER, JointStateOutput
 from launchkit.stock.gazebo_ros.sim.model import ModelError, PluginSpec
