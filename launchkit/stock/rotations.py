@@ -1,5 +1,10 @@
-"""Quaternion helpers for frame transforms (plain math: a state publisher needs a handful each
-message, and numpy's call overhead would cost more than the arithmetic)."""
+"""Quaternions, rotations and Euler angles: the one place launchkit's stock nodes and simulator
+do rotation math (plain math: a state publisher needs a handful each message, and numpy's call
+overhead would cost more than the arithmetic).
+
+Quaternions are ``(x, y, z, w)`` as in geometry_msgs; Euler angles are URDF's and ROS's fixed-axis
+roll, pitch, yaw (about x, then y, then z).
+"""
 
 from __future__ import annotations
 
@@ -35,12 +40,22 @@ def quaternion_multiply(a: Quaternion, b: Quaternion) -> Quaternion:
     )
 
 
-def rotate(q: Quaternion, v: Vector) -> Vector:
+def conjugate(q: Quaternion) -> Quaternion:
+    """The inverse rotation of unit quaternion ``q``."""
+    return (-q[0], -q[1], -q[2], q[3])
+
+
+def rotate(q: Quaternion, v: Iterable[float]) -> Vector:
     """Vector ``v`` rotated by unit quaternion ``q``."""
-    qv: Quaternion = (v[0], v[1], v[2], 0.0)
-    conj: Quaternion = (-q[0], -q[1], -q[2], q[3])
-    x, y, z, _ = quaternion_multiply(quaternion_multiply(q, qv), conj)
-    return (x, y, z)
+    x, y, z, w = q
+    vx, vy, vz = (float(c) for c in v)
+    # t = 2 q_vec × v ; v' = v + w t + q_vec × t
+    tx, ty, tz = 2 * (y * vz - z * vy), 2 * (z * vx - x * vz), 2 * (x * vy - y * vx)
+    return (
+        vx + w * tx + (y * tz - z * ty),
+        vy + w * ty + (z * tx - x * tz),
+        vz + w * tz + (x * ty - y * tx),
+    )
 
 
 def rpy_to_quaternion(roll: float, pitch: float, yaw: float) -> Quaternion:
@@ -49,6 +64,26 @@ def rpy_to_quaternion(roll: float, pitch: float, yaw: float) -> Quaternion:
     qy = axis_angle((0.0, 1.0, 0.0), pitch)
     qz = axis_angle((0.0, 0.0, 1.0), yaw)
     return quaternion_multiply(qz, quaternion_multiply(qy, qx))
+
+
+def quaternion_to_rpy(q: Quaternion) -> Vector:
+    """(roll, pitch, yaw) of unit quaternion ``q`` (pitch clamped to ±π/2)."""
+    x, y, z, w = q
+    roll = math.atan2(2 * (w * x + y * z), 1 - 2 * (x * x + y * y))
+    pitch = math.asin(max(-1.0, min(1.0, 2 * (w * y - z * x))))
+    yaw = math.atan2(2 * (w * z + x * y), 1 - 2 * (y * y + z * z))
+    return roll, pitch, yaw
+
+
+def yaw_of(q: Quaternion) -> float:
+    """Yaw (rad) of ``q``: the heading of a robot on the ground."""
+    x, y, z, w = q
+    return math.atan2(2.0 * (w * z + x * y), 1.0 - 2.0 * (y * y + z * z))
+
+
+def quaternion_from_yaw(yaw: float) -> Quaternion:
+    """The rotation by ``yaw`` about +z."""
+    return (0.0, 0.0, math.sin(yaw / 2.0), math.cos(yaw / 2.0))
 
 
 def matrix_to_quaternion(m: list[list[float]]) -> Quaternion:

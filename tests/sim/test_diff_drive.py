@@ -12,10 +12,9 @@ from launchkit.stock.gazebo_ros.sim.diff_drive import (
     DiffDriveConfigError,
     DiffDriveController,
     DiffDriveParams,
-    quaternion_from_yaw,
     wheel_geometry_warnings,
-    yaw_of,
 )
+from launchkit.stock.rotations import quaternion_from_yaw, yaw_of
 
 SEED_TAGS = {
     "odometry_frame": "odom",

@@ -7,7 +7,6 @@ serializer expects.
 from __future__ import annotations
 
 import importlib
-import math
 from typing import Any
 
 import numpy as np
@@ -167,11 +166,3 @@ def joint_state(
         velocity=np.array(velocities, dtype=np.float64),
         effort=np.array(efforts, dtype=np.float64),
     )
-
-
-def euler_from_quaternion(x: float, y: float, z: float, w: float) -> tuple[float, float, float]:
-    """(roll, pitch, yaw) of a quaternion."""
-    roll = math.atan2(2 * (w * x + y * z), 1 - 2 * (x * x + y * y))
-    pitch = math.asin(max(-1.0, min(1.0, 2 * (w * y - z * x))))
-    yaw = math.atan2(2 * (w * z + x * y), 1 - 2 * (y * y + z * z))
-    return roll, pitch, yaw

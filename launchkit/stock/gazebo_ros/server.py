@@ -40,6 +40,7 @@ from launchkit.stock.gazebo_ros.sim.pacing import Pacer
 from launchkit.stock.gazebo_ros.sim.plugins import EntityPlugins, PluginDefaults, load_plugins
 from launchkit.stock.gazebo_ros.sim.sensors import RateGate
 from launchkit.stock.gazebo_ros.sim.world import load_world, resolve_world
+from launchkit.stock.rotations import quaternion_to_rpy
 
 INIT_PLUGIN = "libgazebo_ros_init.so"
 FACTORY_PLUGIN = "libgazebo_ros_factory.so"
@@ -178,9 +179,8 @@ class SimServer:
                 self.logger.warn(
                     f"reference_frame '{request.reference_frame}' ignored; the pose is in world"
                 )
-            roll, pitch, yaw = messages.euler_from_quaternion(
-                pose.orientation.x, pose.orientation.y, pose.orientation.z, pose.orientation.w
-            )
+            o = pose.orientation
+            roll, pitch, yaw = quaternion_to_rpy((o.x, o.y, o.z, o.w))
             if pose.orientation.w == 0 and pose.orientation.z == 0 and pose.orientation.x == 0:
                 roll = pitch = yaw = 0.0  # an all-zero quaternion means "no rotation"
             entity = self.sim.spawn(

@@ -13,13 +13,12 @@ from __future__ import annotations
 
 import argparse
 import importlib
-import math
 import sys
 import time
 from pathlib import Path
 from typing import Any
 
-from launchkit.stock.gazebo_ros.sim.diff_drive import quaternion_from_yaw
+from launchkit.stock.rotations import rpy_to_quaternion
 
 
 class SpawnError(Exception):
@@ -52,21 +51,6 @@ def parse_args(argv: list[str]) -> argparse.Namespace:
     parser.add_argument("-spawn_service_timeout", type=float, default=30.0)
     parser.add_argument("-unpause", action="store_true")
     return parser.parse_args(argv)
-
-
-def quaternion_from_euler(roll: float, pitch: float, yaw: float) -> tuple[float, ...]:
-    """(x, y, z, w) of a fixed-axis roll, pitch, yaw rotation."""
-    if roll == 0.0 and pitch == 0.0:
-        return quaternion_from_yaw(yaw)
-    cr, sr = math.cos(roll / 2), math.sin(roll / 2)
-    cp, sp = math.cos(pitch / 2), math.sin(pitch / 2)
-    cy, sy = math.cos(yaw / 2), math.sin(yaw / 2)
-    return (
-        sr * cp * cy - cr * sp * sy,
-        cr * sp * cy + sr * cp * sy,
-        cr * cp * sy - sr * sp * cy,
-        cr * cp * cy + sr * sp * sy,
-    )
 
 
 def _read_topic(ros: Any, node: Any, topic: str, timeout: float) -> str:
@@ -119,7 +103,7 @@ def spawn(ros: Any, args: argparse.Namespace) -> str:
             f"service /spawn_entity not available within {args.spawn_service_timeout:g} s "
             "(expected a running gzserver with libgazebo_ros_factory.so)"
         )
-    qx, qy, qz, qw = quaternion_from_euler(args.R, args.P, args.Y)
+    qx, qy, qz, qw = rpy_to_quaternion(args.R, args.P, args.Y)
     request = srv.Request(
         name=args.entity,
         xml=xml,

@@ -13,6 +13,8 @@ import math
 from collections.abc import Callable, Mapping
 from dataclasses import dataclass, field, replace
 
+from launchkit.stock.rotations import quaternion_from_yaw, yaw_of
+
 #: ``odometry_source`` values, as gazebo_ros numbers them.
 ENCODER = 0
 WORLD = 1
@@ -202,17 +204,6 @@ class DriveUpdate:
 
     odometry: Odometry
     command: WheelCommand
-
-
-def yaw_of(q: tuple[float, float, float, float]) -> float:
-    """Yaw (rad) of a quaternion given as (x, y, z, w)."""
-    x, y, z, w = q
-    return math.atan2(2.0 * (w * z + x * y), 1.0 - 2.0 * (y * y + z * z))
-
-
-def quaternion_from_yaw(yaw: float) -> tuple[float, float, float, float]:
-    """The (x, y, z, w) quaternion of a rotation by ``yaw`` about +z."""
-    return (0.0, 0.0, math.sin(yaw / 2.0), math.cos(yaw / 2.0))
 
 
 @dataclass

@@ -8,7 +8,6 @@ One thread must own a :class:`Simulation`.
 
 from __future__ import annotations
 
-import math
 import os
 import tempfile
 from collections.abc import Callable
@@ -20,6 +19,7 @@ from launchkit.stock.gazebo_ros.sim.diff_drive import BaseState
 from launchkit.stock.gazebo_ros.sim.materials import material_rgba
 from launchkit.stock.gazebo_ros.sim.model import ModelError, ModelSpec, parse_model
 from launchkit.stock.gazebo_ros.sim.world import Shape, WorldSpec
+from launchkit.stock.rotations import conjugate, rotate
 
 Pose = tuple[float, float, float, float, float, float]
 
@@ -347,15 +347,15 @@ class Simulation:
         axis = self.p.getJointInfo(entity.body, index, physicsClientId=self.client)[13]
         _, child_orientation = self.link_pose(entity, _child_link(entity, index))
         _, root_orientation = self.link_pose(entity, entity.spec.root_link)
-        world = _rotate(child_orientation, axis)
-        return _rotate(_conjugate(root_orientation), world)
+        world = rotate(child_orientation, axis)
+        return rotate(conjugate(root_orientation), world)
 
     def position_in_root(self, entity: Entity, link: str) -> tuple[float, float, float]:
         """A link frame's origin expressed in the root link's frame."""
         position, _ = self.link_pose(entity, link)
         root_position, root_orientation = self.link_pose(entity, entity.spec.root_link)
         offset = tuple(a - b for a, b in zip(position, root_position, strict=False))
-        return _rotate(_conjugate(root_orientation), offset)
+        return rotate(conjugate(root_orientation), offset)
 
     def set_state(
         self,
@@ -402,25 +402,3 @@ def _child_link(entity: Entity, joint_index: int) -> str:
         if index == joint_index:
             return name
     raise SimulationError(f"joint index {joint_index} has no child link")
-
-
-def _conjugate(q: tuple[float, float, float, float]) -> tuple[float, float, float, float]:
-    return (-q[0], -q[1], -q[2], q[3])
-
-
-def _rotate(q: tuple[float, float, float, float], v: Any) -> tuple[float, float, float]:
-    """Rotate vector ``v`` by quaternion ``q`` (x, y, z, w)."""
-    x, y, z, w = q
-    vx, vy, vz = (float(c) for c in v)
-    # t = 2 q_vec × v ; v' = v + w t + q_vec × t
-    tx, ty, tz = 2 * (y * vz - z * vy), 2 * (z * vx - x * vz), 2 * (x * vy - y * vx)
-    return (
-        vx + w * tx + (y * tz - z * ty),
-        vy + w * ty + (z * tx - x * tz),
-        vz + w * tz + (x * ty - y * tx),
-    )
-
-
-def yaw_error(a: float, b: float) -> float:
-    """The smallest signed angle from ``b`` to ``a``."""
-    return math.atan2(math.sin(a - b), math.cos(a - b))

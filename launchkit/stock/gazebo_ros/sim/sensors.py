@@ -12,8 +12,9 @@ import math
 from collections.abc import Callable
 from dataclasses import dataclass
 
-from launchkit.stock.gazebo_ros.sim.engine import Entity, Simulation, _rotate
+from launchkit.stock.gazebo_ros.sim.engine import Entity, Simulation
 from launchkit.stock.gazebo_ros.sim.model import ModelError, SensorSpec
+from launchkit.stock.rotations import rotate
 
 #: ROS 1 camera plugin tags that gazebo_ros for ROS 2 ignores; logged when found.
 CAMERA_ROS1_TAGS = (
@@ -224,7 +225,7 @@ class Lidar:
         position, orientation = self.sim.link_pose(self.entity, c.link)
         starts, ends = [], []
         for d in self._directions:
-            wx, wy, wz = _rotate(orientation, d)
+            wx, wy, wz = rotate(orientation, d)
             starts.append(
                 (
                     position[0] + wx * c.range_min,
@@ -273,8 +274,8 @@ class Camera:
         """One frame as packed rows in the configured encoding (``step = width·channels``)."""
         p, c = self.sim.p, self.config
         position, orientation = self.sim.link_pose(self.entity, c.link)
-        forward = _rotate(orientation, (1.0, 0.0, 0.0))
-        up = _rotate(orientation, (0.0, 0.0, 1.0))
+        forward = rotate(orientation, (1.0, 0.0, 0.0))
+        up = rotate(orientation, (0.0, 0.0, 1.0))
         target = tuple(a + b for a, b in zip(position, forward, strict=False))
         view = p.computeViewMatrix(position, target, up)
         renderer = p.ER_BULLET_HARDWARE_OPENGL if self.sim.egl else p.ER_TINY_RENDERER
