@@ -1,4 +1,9 @@
-"""The shared ``__main__`` wrapper of every stock node: user errors as one line and exit 2."""
+"""How every stock node starts: the one ``__main__`` wrapper, turning a user error into one line
+and exit status 2 (no traceback), and Ctrl-C into a clean exit.
+
+Each node module ends with ``sys.exit(_entry.run(main, "program"))``; its ``main(argv)`` raises a
+:class:`launchkit.errors.UserError` (or a subclass) for a bad command line, parameter or file.
+"""
 
 from __future__ import annotations
 
@@ -17,7 +22,7 @@ def run(main: Callable[[list[str]], int], program: str) -> int:
     try:
         return main(sys.argv)
     except LaunchkitError as exc:
-        print(f"[{program}] {exc.format()}", file=sys.stderr, flush=True)
+        print(f"{program}: {exc.format()}", file=sys.stderr, flush=True)
         return exc.exit_status
     except KeyboardInterrupt:
         return 0

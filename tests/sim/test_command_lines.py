@@ -90,7 +90,8 @@ def test_bad_command_lines_exit_2_with_one_error(
         [*command, *argv], capture_output=True, text=True, timeout=60, check=False, env=env
     )
     assert result.returncode == 2
-    assert message in result.stderr
+    (line,) = [line for line in result.stderr.splitlines() if "error:" in line]
+    assert line.startswith(f"{executable}: error: ") and message in line
     assert "Traceback" not in result.stderr
 
 

@@ -76,7 +76,8 @@ def test_rsp_bad_description_is_one_line_exit_2(
     assert proc.returncode == 2, err
     assert message in err
     assert "Traceback" not in err
-    assert len([line for line in err.splitlines() if "error:" in line]) == 1
+    (line,) = [line for line in err.splitlines() if "error:" in line]
+    assert line.startswith("robot_state_publisher: ") and ": error: " in line
 
 
 def test_jsp_publishes_zeros_and_merges_sources(

@@ -24,6 +24,8 @@ import sys
 from dataclasses import asdict, dataclass
 from typing import Any
 
+from launchkit.errors import UserError
+from launchkit.stock import _entry
 from launchkit.stock.gazebo_ros import messages
 from launchkit.stock.gazebo_ros._shutdown import shutdown_within
 from launchkit.stock.gazebo_ros.sim.engine import Simulation, SimulationError
@@ -37,7 +39,7 @@ from launchkit.stock.gazebo_ros.state_pairs import StatePairs, nanoseconds
 IDLE_POLL = 0.1
 
 
-class CameraConfigError(Exception):
+class CameraConfigError(UserError):
     """Parameters the camera node cannot work with (exit status 2)."""
 
 
@@ -53,10 +55,6 @@ class CameraNodeParams:
     def as_parameters(self) -> dict[str, object]:
         """The ROS parameters, by name."""
         return asdict(self)
-
-
-def _msg(package: str, name: str) -> Any:
-    return getattr(importlib.import_module(f"launchkit.ros.msgs.{package}.msg"), name)
 
 
 class CameraNode:
@@ -84,8 +82,12 @@ class CameraNode:
         self.camera: Camera | None = None
         c = self.config
         qos = ros.QoSProfile(depth=5, reliability=ros.ReliabilityPolicy.RELIABLE)
-        self.image_pub = node.create_publisher(_msg("sensor_msgs", "Image"), c.image_topic, qos)
-        self.info_pub = node.create_publisher(_msg("sensor_msgs", "CameraInfo"), c.info_topic, qos)
+        self.image_pub = node.create_publisher(
+            messages.message_class("sensor_msgs", "Image"), c.image_topic, qos
+        )
+        self.info_pub = node.create_publisher(
+            messages.message_class("sensor_msgs", "CameraInfo"), c.info_topic, qos
+        )
         self.gate = RateGate(c.update_rate)
         self.pairs: StatePairs[Any] = StatePairs()
         self.newest: tuple[int, Any, Any] | None = None  # (stamp ns, joint states, ground truth)
@@ -121,13 +123,13 @@ class CameraNode:
             node, name = self.node, self.entity_name
             self.state_subs = [
                 node.create_subscription(
-                    _msg("nav_msgs", "Odometry"),
+                    messages.message_class("nav_msgs", "Odometry"),
                     messages.GROUND_TRUTH_TOPIC.format(entity=name),
                     self._truth,
                     10,
                 ),
                 node.create_subscription(
-                    _msg("sensor_msgs", "JointState"),
+                    messages.message_class("sensor_msgs", "JointState"),
                     messages.STATE_TOPIC.format(entity=name),
                     self._joints,
                     10,
@@ -215,19 +217,14 @@ def _camera_config(sensors: tuple[SensorSpec, ...], name: str) -> CameraConfig:
     return CameraConfig.from_sensor(cameras[0], lambda _message: None)
 
 
-def main(argv: list[str] | None = None) -> int:
-    """Entry point of ``camera``."""
+def main(argv: list[str]) -> int:
+    """Run the camera node until stopped; ``argv`` is the whole command line."""
     ros = importlib.import_module("launchkit.ros")
-    ros.init(args=sys.argv if argv is None else argv)
+    ros.init(args=argv)
     camera: CameraNode | None = None
     try:
         camera = CameraNode(ros)
         camera.run()
-    except CameraConfigError as exc:
-        print(f"camera: error: {exc}", file=sys.stderr)
-        return 2
-    except KeyboardInterrupt:
-        pass
     finally:
         if camera is not None:
             camera.close()
@@ -236,4 +233,4 @@ def main(argv: list[str] | None = None) -> int:
 
 
 if __name__ == "__main__":
-    raise SystemExit(main())
+    sys.exit(_entry.run(main, "camera"))

@@ -13,6 +13,8 @@ import importlib
 import sys
 from typing import Any
 
+from launchkit.errors import UserError
+from launchkit.stock import _entry
 from launchkit.stock.gazebo_ros import messages
 from launchkit.stock.gazebo_ros._shutdown import shutdown_within
 from launchkit.stock.gazebo_ros.sim.diff_drive import (
@@ -22,10 +24,6 @@ from launchkit.stock.gazebo_ros.sim.diff_drive import (
     DiffDriveParams,
 )
 from launchkit.stock.gazebo_ros.state_pairs import StatePairs, nanoseconds
-
-
-def _msg(package: str, name: str) -> Any:
-    return getattr(importlib.import_module(f"launchkit.ros.msgs.{package}.msg"), name)
 
 
 class DiffDriveNode:
@@ -45,15 +43,21 @@ class DiffDriveNode:
         self.controller: DiffDriveController | None = None
         self._pairs: StatePairs[BaseState] = StatePairs()
         p = self.params
-        self.odom_pub = node.create_publisher(_msg("nav_msgs", "Odometry"), p.odometry_topic, 1)
-        self.tf_pub = node.create_publisher(_msg("tf2_msgs", "TFMessage"), "/tf", 100)
-        joint_state = _msg("sensor_msgs", "JointState")
+        self.odom_pub = node.create_publisher(
+            messages.message_class("nav_msgs", "Odometry"), p.odometry_topic, 1
+        )
+        self.tf_pub = node.create_publisher(
+            messages.message_class("tf2_msgs", "TFMessage"), "/tf", 100
+        )
+        joint_state = messages.message_class("sensor_msgs", "JointState")
         self.command_pub = node.create_publisher(
             joint_state, messages.COMMAND_TOPIC.format(entity=entity), 10
         )
-        node.create_subscription(_msg("geometry_msgs", "Twist"), p.command_topic, self._cmd, 1)
         node.create_subscription(
-            _msg("nav_msgs", "Odometry"),
+            messages.message_class("geometry_msgs", "Twist"), p.command_topic, self._cmd, 1
+        )
+        node.create_subscription(
+            messages.message_class("nav_msgs", "Odometry"),
             messages.GROUND_TRUTH_TOPIC.format(entity=entity),
             self._truth,
             10,
@@ -133,22 +137,19 @@ class DiffDriveNode:
             self.tf_pub.publish(messages.transform(update.odometry))
 
 
-def main(argv: list[str] | None = None) -> int:
-    """Entry point of ``diff_drive``."""
+def main(argv: list[str]) -> int:
+    """Run the diff drive node until stopped; ``argv`` is the whole command line."""
     ros = importlib.import_module("launchkit.ros")
-    ros.init(args=sys.argv if argv is None else argv)
+    ros.init(args=argv)
     try:
         node = DiffDriveNode(ros)
         ros.spin(node.node)
     except DiffDriveConfigError as exc:
-        print(f"diff_drive: error: {exc}", file=sys.stderr)
-        return 2
-    except KeyboardInterrupt:
-        pass
+        raise UserError(str(exc)) from None
     finally:
         shutdown_within(ros, 2.0, 0)
     return 0
 
 
 if __name__ == "__main__":
-    raise SystemExit(main())
+    sys.exit(_entry.run(main, "diff_drive"))

@@ -6,7 +6,6 @@ serializer expects.
 
 from __future__ import annotations
 
-import importlib
 from typing import Any
 
 import numpy as np
@@ -15,9 +14,20 @@ from launchkit.stock.gazebo_ros.sim.diff_drive import Odometry
 from launchkit.stock.gazebo_ros.sim.sensors import CameraConfig, LidarConfig
 
 
-def _type(package: str, name: str) -> Any:
-    """Message class ``package/msg/name`` of the ROS layer (imported on first use)."""
-    return getattr(importlib.import_module(f"launchkit.ros.msgs.{package}.msg"), name)
+def message_class(package: str, name: str) -> Any:
+    """Message class ``package/msg/name`` of the ROS layer (imported on first use, so that
+    importing this module does not start the ROS layer): the one way the simulator's nodes
+    get their message types."""
+    from launchkit.ros.msgs import get_message
+
+    return get_message(f"{package}/msg/{name}")
+
+
+def service_class(package: str, name: str) -> Any:
+    """Service type ``package/srv/name`` of the ROS layer (imported on first use)."""
+    from launchkit.ros.msgs import get_service
+
+    return get_service(f"{package}/srv/{name}")
 
 
 #: Topics between the simulator and the diff drive node process, per entity.
@@ -28,7 +38,7 @@ COMMAND_TOPIC = "/gazebo/{entity}/joint_commands"
 
 def stamp(seconds: float) -> Any:
     """A ``builtin_interfaces/Time`` for ``seconds`` of sim time."""
-    Time = _type("builtin_interfaces", "Time")
+    Time = message_class("builtin_interfaces", "Time")
 
     nanoseconds = round(seconds * 1e9)
     return Time(sec=nanoseconds // 1_000_000_000, nanosec=nanoseconds % 1_000_000_000)
@@ -41,28 +51,28 @@ def seconds_of(time_msg: Any) -> float:
 
 def header(seconds: float, frame_id: str) -> Any:
     """A ``std_msgs/Header``."""
-    Header = _type("std_msgs", "Header")
+    Header = message_class("std_msgs", "Header")
 
     return Header(stamp=stamp(seconds), frame_id=frame_id)
 
 
 def clock(seconds: float) -> Any:
     """A ``rosgraph_msgs/Clock``."""
-    Clock = _type("rosgraph_msgs", "Clock")
+    Clock = message_class("rosgraph_msgs", "Clock")
 
     return Clock(clock=stamp(seconds))
 
 
 def odometry(odom: Odometry) -> Any:
     """A ``nav_msgs/Odometry`` from the diff drive's odometry."""
-    Point = _type("geometry_msgs", "Point")
-    Pose = _type("geometry_msgs", "Pose")
-    PoseWithCovariance = _type("geometry_msgs", "PoseWithCovariance")
-    Quaternion = _type("geometry_msgs", "Quaternion")
-    Twist = _type("geometry_msgs", "Twist")
-    TwistWithCovariance = _type("geometry_msgs", "TwistWithCovariance")
-    Vector3 = _type("geometry_msgs", "Vector3")
-    OdometryMsg = _type("nav_msgs", "Odometry")
+    Point = message_class("geometry_msgs", "Point")
+    Pose = message_class("geometry_msgs", "Pose")
+    PoseWithCovariance = message_class("geometry_msgs", "PoseWithCovariance")
+    Quaternion = message_class("geometry_msgs", "Quaternion")
+    Twist = message_class("geometry_msgs", "Twist")
+    TwistWithCovariance = message_class("geometry_msgs", "TwistWithCovariance")
+    Vector3 = message_class("geometry_msgs", "Vector3")
+    OdometryMsg = message_class("nav_msgs", "Odometry")
 
     return OdometryMsg(
         header=header(odom.stamp, odom.frame_id),
@@ -80,11 +90,11 @@ def odometry(odom: Odometry) -> Any:
 
 def transform(odom: Odometry) -> Any:
     """A ``tf2_msgs/TFMessage`` with the odometry's ``frame_id -> child_frame_id`` transform."""
-    Quaternion = _type("geometry_msgs", "Quaternion")
-    Transform = _type("geometry_msgs", "Transform")
-    TransformStamped = _type("geometry_msgs", "TransformStamped")
-    Vector3 = _type("geometry_msgs", "Vector3")
-    TFMessage = _type("tf2_msgs", "TFMessage")
+    Quaternion = message_class("geometry_msgs", "Quaternion")
+    Transform = message_class("geometry_msgs", "Transform")
+    TransformStamped = message_class("geometry_msgs", "TransformStamped")
+    Vector3 = message_class("geometry_msgs", "Vector3")
+    TFMessage = message_class("tf2_msgs", "TFMessage")
 
     return TFMessage(
         transforms=[
@@ -101,7 +111,7 @@ def transform(odom: Odometry) -> Any:
 
 def laser_scan(config: LidarConfig, seconds: float, ranges: list[float]) -> Any:
     """A ``sensor_msgs/LaserScan`` as gazebo_ros_ray_sensor fills it."""
-    LaserScan = _type("sensor_msgs", "LaserScan")
+    LaserScan = message_class("sensor_msgs", "LaserScan")
 
     return LaserScan(
         header=header(seconds, config.frame_id),
@@ -119,7 +129,7 @@ def laser_scan(config: LidarConfig, seconds: float, ranges: list[float]) -> Any:
 
 def image(config: CameraConfig, seconds: float, data: bytes) -> Any:
     """A ``sensor_msgs/Image`` of one rendered frame."""
-    Image = _type("sensor_msgs", "Image")
+    Image = message_class("sensor_msgs", "Image")
 
     return Image(
         header=header(seconds, config.frame_id),
@@ -134,7 +144,7 @@ def image(config: CameraConfig, seconds: float, data: bytes) -> Any:
 
 def camera_info(config: CameraConfig, seconds: float) -> Any:
     """A ``sensor_msgs/CameraInfo`` as gazebo_ros_camera fills it (plumb_bob, no distortion)."""
-    CameraInfo = _type("sensor_msgs", "CameraInfo")
+    CameraInfo = message_class("sensor_msgs", "CameraInfo")
 
     k, p = config.intrinsics()
     return CameraInfo(
@@ -157,7 +167,7 @@ def joint_state(
     efforts: list[float],
 ) -> Any:
     """A ``sensor_msgs/JointState``."""
-    JointState = _type("sensor_msgs", "JointState")
+    JointState = message_class("sensor_msgs", "JointState")
 
     return JointState(
         header=header(seconds, ""),

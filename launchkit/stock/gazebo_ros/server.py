@@ -29,6 +29,8 @@ from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
 
+from launchkit.errors import UserError
+from launchkit.stock import _entry
 from launchkit.stock.gazebo_ros import messages
 from launchkit.stock.gazebo_ros._shutdown import shutdown_within
 from launchkit.stock.gazebo_ros.camera_node import CameraNodeParams
@@ -51,8 +53,8 @@ FACTORY_PLUGIN = "libgazebo_ros_factory.so"
 STOP_WATCHDOG = 6.0
 
 
-class UsageError(Exception):
-    """A bad command line (exit status 2)."""
+class UsageError(UserError):
+    """A bad command line or world (exit status 2)."""
 
 
 @dataclass(frozen=True)
@@ -158,12 +160,14 @@ class SimServer:
         self.clock_pub = None
         if options.ros_init:
             clock_qos = ros.QoSProfile(depth=1, durability=ros.DurabilityPolicy.TRANSIENT_LOCAL)
-            self.clock_pub = p.create_publisher(_msg("rosgraph_msgs", "Clock"), "/clock", clock_qos)
+            self.clock_pub = p.create_publisher(
+                messages.message_class("rosgraph_msgs", "Clock"), "/clock", clock_qos
+            )
         if options.factory:
-            services = importlib.import_module("launchkit.ros.msgs.gazebo_msgs.srv")
-            SpawnEntity, DeleteEntity = services.SpawnEntity, services.DeleteEntity
-            p.create_service(SpawnEntity, "/spawn_entity", self._spawn)
-            p.create_service(DeleteEntity, "/delete_entity", self._delete)
+            spawn_type = messages.service_class("gazebo_msgs", "SpawnEntity")
+            delete_type = messages.service_class("gazebo_msgs", "DeleteEntity")
+            p.create_service(spawn_type, "/spawn_entity", self._spawn)
+            p.create_service(delete_type, "/delete_entity", self._delete)
         self.running = True
 
     # -- services --------------------------------------------------------------------------
@@ -219,8 +223,8 @@ class SimServer:
 
     def _start_runtime(self, entity: Entity, plugins: EntityPlugins, model: str) -> None:
         p, name = self.node, entity.name
-        joint_state = _msg("sensor_msgs", "JointState")
-        odometry = _msg("nav_msgs", "Odometry")
+        joint_state = messages.message_class("sensor_msgs", "JointState")
+        odometry = messages.message_class("nav_msgs", "Odometry")
         runtime = _Runtime(
             entity,
             plugins,
@@ -235,7 +239,9 @@ class SimServer:
         )
         for lidar in plugins.lidars:
             runtime.sensor_pubs[lidar.config.topic] = p.create_publisher(
-                _msg("sensor_msgs", "LaserScan"), lidar.config.topic, self.sensor_qos
+                messages.message_class("sensor_msgs", "LaserScan"),
+                lidar.config.topic,
+                self.sensor_qos,
             )
         for output in plugins.joint_states:
             publisher = p.create_publisher(joint_state, output.topic, 10)
@@ -367,21 +373,15 @@ def _ground_truth(now: float, root: str, base: Any) -> Any:
     )
 
 
-def _msg(package: str, name: str) -> Any:
-    return getattr(importlib.import_module(f"launchkit.ros.msgs.{package}.msg"), name)
-
-
-def main(argv: list[str] | None = None) -> int:
-    """Entry point of ``gzserver`` and ``gazebo``."""
-    argv = sys.argv[1:] if argv is None else argv
+def main(argv: list[str]) -> int:
+    """Run the server until stopped; ``argv`` is the whole command line."""
     try:
-        options = parse_server_args(argv)
+        options = parse_server_args(argv[1:])
         resolve_world(options.world)
-    except (UsageError, ModelError) as exc:
-        print(f"gazebo: error: {exc}", file=sys.stderr)
-        return 2
+    except ModelError as exc:
+        raise UsageError(str(exc)) from None
     ros = importlib.import_module("launchkit.ros")
-    ros.init(args=[sys.argv[0], *argv])
+    ros.init(args=argv)
     server: SimServer | None = None
     stop_requested = False
 
@@ -407,8 +407,7 @@ def main(argv: list[str] | None = None) -> int:
         server.running = not stop_requested
         server.run()
     except ModelError as exc:
-        print(f"gazebo: error: {exc}", file=sys.stderr)
-        return 2
+        raise UsageError(str(exc)) from None
     finally:
         if server is not None:
             server.close()
@@ -417,4 +416,4 @@ def main(argv: list[str] | None = None) -> int:
 
 
 if __name__ == "__main__":
-    raise SystemExit(main())
+    sys.exit(_entry.run(main, "gazebo"))

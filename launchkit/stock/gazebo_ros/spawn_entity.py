@@ -18,10 +18,13 @@ import time
 from pathlib import Path
 from typing import Any
 
+from launchkit.errors import UserError
+from launchkit.stock import _entry
+from launchkit.stock.gazebo_ros import messages
 from launchkit.stock.rotations import rpy_to_quaternion
 
 
-class SpawnError(Exception):
+class SpawnError(UserError):
     """Spawning failed; the message says what and what was expected."""
 
 
@@ -54,7 +57,7 @@ def parse_args(argv: list[str]) -> argparse.Namespace:
 
 
 def _read_topic(ros: Any, node: Any, topic: str, timeout: float) -> str:
-    string = importlib.import_module("launchkit.ros.msgs.std_msgs.msg").String
+    string = messages.message_class("std_msgs", "String")
     received: list[str] = []
     qos = ros.QoSProfile(depth=1, durability=ros.DurabilityPolicy.TRANSIENT_LOCAL)
     node.create_subscription(string, topic, lambda msg: received.append(str(msg.data)), qos)
@@ -94,8 +97,10 @@ def spawn(ros: Any, args: argparse.Namespace) -> str:
         xml = sys.stdin.read()
     else:
         xml = _read_topic(ros, node, args.topic, args.timeout)
-    srv = importlib.import_module("launchkit.ros.msgs.gazebo_msgs.srv").SpawnEntity
-    geometry = importlib.import_module("launchkit.ros.msgs.geometry_msgs.msg")
+    srv = messages.service_class("gazebo_msgs", "SpawnEntity")
+    pose, point, quaternion = (
+        messages.message_class("geometry_msgs", name) for name in ("Pose", "Point", "Quaternion")
+    )
     client = node.create_client(srv, "/spawn_entity")
     node.get_logger().info("Waiting for service /spawn_entity")
     if not client.wait_for_service(timeout_sec=args.spawn_service_timeout):
@@ -108,9 +113,9 @@ def spawn(ros: Any, args: argparse.Namespace) -> str:
         name=args.entity,
         xml=xml,
         robot_namespace=args.robot_namespace,
-        initial_pose=geometry.Pose(
-            position=geometry.Point(x=args.x, y=args.y, z=args.z),
-            orientation=geometry.Quaternion(x=qx, y=qy, z=qz, w=qw),
+        initial_pose=pose(
+            position=point(x=args.x, y=args.y, z=args.z),
+            orientation=quaternion(x=qx, y=qy, z=qz, w=qw),
         ),
         reference_frame=args.reference_frame,
     )
@@ -121,21 +126,13 @@ def spawn(ros: Any, args: argparse.Namespace) -> str:
     return str(response.status_message)
 
 
-def main(argv: list[str] | None = None) -> int:
-    """Entry point of ``spawn_entity.py``."""
-    argv = sys.argv[1:] if argv is None else argv
-    try:
-        args = parse_args(argv)
-    except SpawnError as exc:
-        print(f"spawn_entity.py: error: {exc}", file=sys.stderr)
-        return 2
+def main(argv: list[str]) -> int:
+    """Spawn the entity; ``argv`` is the whole command line."""
+    args = parse_args(argv[1:])
     ros = importlib.import_module("launchkit.ros")
-    ros.init(args=[sys.argv[0], *argv])
+    ros.init(args=argv)
     try:
         message = spawn(ros, args)
-    except SpawnError as exc:
-        print(f"spawn_entity.py: error: {exc}", file=sys.stderr)
-        return 2
     finally:
         ros.shutdown()
     print(f"[spawn_entity] {message}", flush=True)
@@ -143,4 +140,4 @@ def main(argv: list[str] | None = None) -> int:
 
 
 if __name__ == "__main__":
-    raise SystemExit(main())
+    sys.exit(_entry.run(main, "spawn_entity.py"))
