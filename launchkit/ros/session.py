@@ -16,9 +16,9 @@ from typing import Any, cast
 
 import zenoh
 
+from launchkit.envvars import ROUTER
 from launchkit.errors import UserError
 
-ROUTER_ENV = "LAUNCHKIT_ROUTER"
 DEFAULT_ROUTER = "tcp/127.0.0.1:7447"
 LOOPBACK_LISTEN = "tcp/127.0.0.1:0"
 
@@ -29,7 +29,7 @@ class EndpointError(UserError):
 
 def router_endpoint(endpoint: str | None = None) -> str:
     """The router endpoint: ``endpoint``, else ``$LAUNCHKIT_ROUTER``, else the default."""
-    value = endpoint or os.environ.get(ROUTER_ENV) or DEFAULT_ROUTER
+    value = endpoint or os.environ.get(ROUTER) or DEFAULT_ROUTER
     return validate_endpoint(value)
 
 

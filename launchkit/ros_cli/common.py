@@ -8,13 +8,14 @@ import time
 from collections.abc import Iterator
 from contextlib import contextmanager
 
+from launchkit.envvars import ROUTER
 from launchkit.errors import RuntimeLaunchError, UserError
 from launchkit.ros.context import Context
 from launchkit.ros.graph import snapshot
 from launchkit.ros.keyexpr import Token
 from launchkit.ros.node import Node
 from launchkit.ros.router import is_listening
-from launchkit.ros.session import ROUTER_ENV, router_endpoint
+from launchkit.ros.session import router_endpoint
 
 
 class CliUsageError(UserError):
@@ -26,7 +27,7 @@ def add_router_option(parser: argparse.ArgumentParser) -> None:
     parser.add_argument(
         "--router",
         metavar="tcp/HOST:PORT",
-        help=f"the Zenoh router to connect to (default ${ROUTER_ENV} or tcp/127.0.0.1:7447)",
+        help=f"the Zenoh router to connect to (default ${ROUTER} or tcp/127.0.0.1:7447)",
     )
     parser.add_argument("--debug", action="store_true", help=argparse.SUPPRESS)
 
@@ -34,11 +35,11 @@ def add_router_option(parser: argparse.ArgumentParser) -> None:
 def use_router(args: argparse.Namespace) -> str:
     """Point this process at the router the user chose; fail clearly if none answers."""
     endpoint = router_endpoint(getattr(args, "router", None))
-    os.environ[ROUTER_ENV] = endpoint
+    os.environ[ROUTER] = endpoint
     if not is_listening(endpoint, timeout=1.0):
         raise RuntimeLaunchError(
             f"no ROS router answers at {endpoint} (start `launchkit run ...` or "
-            f"`launchkit router`, or set {ROUTER_ENV} / --router)"
+            f"`launchkit router`, or set {ROUTER} / --router)"
         )
     return endpoint
 

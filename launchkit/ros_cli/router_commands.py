@@ -7,9 +7,9 @@ import signal
 import threading
 from typing import Any
 
+from launchkit.envvars import ROUTER
 from launchkit.errors import RuntimeLaunchError
 from launchkit.ros.router import start_router
-from launchkit.ros.session import ROUTER_ENV
 
 
 def add_parser(commands: Any) -> None:
@@ -18,7 +18,7 @@ def add_parser(commands: Any) -> None:
     p.add_argument(
         "--router",
         metavar="tcp/HOST:PORT",
-        help=f"where to listen (default ${ROUTER_ENV} or tcp/127.0.0.1:7447)",
+        help=f"where to listen (default ${ROUTER} or tcp/127.0.0.1:7447)",
     )
     p.add_argument("--debug", action="store_true", help=argparse.SUPPRESS)
     p.set_defaults(run=_run)

@@ -28,9 +28,10 @@ from dataclasses import dataclass, field
 from typing import Any, Protocol
 
 from launchkit.description.process_spec import OUTPUT_MODES, ProcessSpec
+from launchkit.envvars import SUPERVISOR_SOCKET
 from launchkit.runtime.lifecycle import State
 from launchkit.runtime.process import SupervisedProcess
-from launchkit.runtime.supervisor_client import MAX_PACKET, SOCKET_ENV
+from launchkit.runtime.supervisor_client import MAX_PACKET
 
 _START_KEYS = {"op", "name", "cmd", "env", "cwd", "respawn", "respawn_delay", "output"}
 _UCRED = struct.Struct("3i")  # pid, uid, gid
@@ -93,7 +94,7 @@ class ChildRequests:
 
     def environment(self) -> dict[str, str]:
         """What a process needs in its environment to make requests."""
-        return {SOCKET_ENV: self.path}
+        return {SUPERVISOR_SOCKET: self.path}
 
     def close(self) -> None:
         """Close every connection and the socket, and remove its folder."""

@@ -4,10 +4,10 @@ from __future__ import annotations
 
 from typing import TYPE_CHECKING, Any, Protocol
 
+from launchkit.envvars import ROUTER as ROUTER_ENV
+
 if TYPE_CHECKING:
     from launchkit.description.launch_context import Runner
-
-ROUTER_ENV = "LAUNCHKIT_ROUTER"
 
 
 class RouterHandle(Protocol):
@@ -58,3 +58,7 @@ def _start_router(endpoint: str | None) -> Any:
     from launchkit.ros.router import start_router  # type: ignore[import-not-found,unused-ignore]
 
     return start_router(endpoint)
+
+
+# ROUTER_ENV stays importable from here for launchkit.testing (its name is in launchkit.envvars).
+__all__ = ["ROUTER_ENV", "NodeNetwork", "RouterHandle"]

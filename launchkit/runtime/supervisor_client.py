@@ -33,7 +33,8 @@ from collections.abc import Mapping
 from dataclasses import dataclass
 from typing import Any
 
-SOCKET_ENV = "LAUNCHKIT_SUPERVISOR_SOCKET"
+from launchkit.envvars import SUPERVISOR_SOCKET
+
 MAX_PACKET = 65536
 DEFAULT_TIMEOUT = 5.0
 
@@ -72,7 +73,7 @@ class SupervisorClient:
     ) -> SupervisorClient | None:
         """A client for ``$LAUNCHKIT_SUPERVISOR_SOCKET``; None when it is not set. Raises
         ``OSError`` when it is set but the launcher cannot be reached."""
-        path = (os.environ if environ is None else environ).get(SOCKET_ENV)
+        path = (os.environ if environ is None else environ).get(SUPERVISOR_SOCKET)
         return cls(path, timeout) if path else None
 
     def start(

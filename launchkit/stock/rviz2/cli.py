@@ -7,10 +7,9 @@ import os
 from pathlib import Path
 from typing import NoReturn
 
+# PORT_ENV sets the default port, e.g. for launch files whose rviz2 line cannot be changed.
+from launchkit.envvars import FOXGLOVE_PORT as PORT_ENV
 from launchkit.errors import UserError
-
-#: Sets the default port, e.g. for launch files whose rviz2 line cannot be changed.
-PORT_ENV = "LAUNCHKIT_FOXGLOVE_PORT"
 
 
 class _Parser(argparse.ArgumentParser):

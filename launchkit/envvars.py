@@ -1,0 +1,22 @@
+"""The name of every ``LAUNCHKIT_*`` environment variable, in one place.
+
+=================================  =================================================================
+``LAUNCHKIT_ROUTER``               the Zenoh router every node connects to (``tcp/HOST:PORT``,
+                                   default ``tcp/127.0.0.1:7447``); ``launchkit run`` sets it for
+                                   the processes it starts
+``LAUNCHKIT_SUPERVISOR_SOCKET``    the launcher's child-request socket, set by ``launchkit run``
+                                   for its processes (:mod:`launchkit.runtime.supervisor_client`)
+``LAUNCHKIT_TIMEOUT_SCALE``        multiplies every wait of the pytest plugin (slow machines)
+``LAUNCHKIT_FOXGLOVE_PORT``        the rviz2 stand-in's WebSocket port when ``--port`` is not given
+=================================  =================================================================
+
+Other variables launchkit reads keep the names ROS gives them (``ROS_DOMAIN_ID``,
+``ROS_LOG_DIR``, ``AMENT_PREFIX_PATH``, ``RCUTILS_LOGGING_USE_STDOUT``, ...).
+"""
+
+from __future__ import annotations
+
+ROUTER = "LAUNCHKIT_ROUTER"
+SUPERVISOR_SOCKET = "LAUNCHKIT_SUPERVISOR_SOCKET"
+TIMEOUT_SCALE = "LAUNCHKIT_TIMEOUT_SCALE"
+FOXGLOVE_PORT = "LAUNCHKIT_FOXGLOVE_PORT"
