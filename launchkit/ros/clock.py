@@ -5,7 +5,6 @@ from __future__ import annotations
 import enum
 import threading
 import time
-from collections.abc import Callable
 from functools import total_ordering
 from typing import Any
 
@@ -116,7 +115,6 @@ class Clock:
         self.clock_type = clock_type
         self._sim_ns: int | None = None  # None: sim time off
         self._lock = threading.Lock()
-        self._on_jump: list[Callable[[], None]] = []
 
     def now(self) -> Time:
         """The current time of this clock."""
@@ -136,21 +134,12 @@ class Clock:
             raise RuntimeError("only a ROS_TIME clock can follow /clock")
         with self._lock:
             self._sim_ns = 0 if active else None
-        self._jumped()
 
     def _set_sim_time(self, nanoseconds: int) -> None:
         with self._lock:
             if self._sim_ns is None:
                 return
             self._sim_ns = nanoseconds
-        self._jumped()
-
-    def _add_time_listener(self, callback: Callable[[], None]) -> None:
-        self._on_jump.append(callback)
-
-    def _jumped(self) -> None:
-        for callback in list(self._on_jump):
-            callback()
 
     def sleep_for(self, duration: Duration) -> None:
         """Sleep for ``duration`` of this clock (steady time when not simulated)."""

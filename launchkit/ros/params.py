@@ -4,7 +4,6 @@ from __future__ import annotations
 
 import enum
 import re
-from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
 
@@ -119,13 +118,6 @@ _VALUE_FIELDS = {
     ParameterType.DOUBLE_ARRAY: "double_array_value",
     ParameterType.STRING_ARRAY: "string_array_value",
 }
-
-
-@dataclass(frozen=True)
-class ParameterOverrides:
-    """Parameter values given to one node from the command line (files, then ``-p``)."""
-
-    values: dict[str, Any]
 
 
 def parse_value_text(text: str) -> Any:

@@ -2,7 +2,6 @@
 
 from __future__ import annotations
 
-from dataclasses import dataclass
 from typing import TYPE_CHECKING
 
 from launchkit.description.actions.base import Action
@@ -12,13 +11,6 @@ from launchkit.errors import LaunchArgumentError, Location
 if TYPE_CHECKING:
     from launchkit.description.conditions import Condition
     from launchkit.description.launch_context import LaunchContext
-
-
-@dataclass(frozen=True)
-class Choice:
-    """One ``<choice value="..."/>``."""
-
-    value: str
 
 
 class DeclareArgument(Action):

@@ -5,7 +5,7 @@ from __future__ import annotations
 import os
 import re
 import shlex
-from dataclasses import dataclass, field, fields
+from dataclasses import dataclass, field
 from typing import TYPE_CHECKING
 
 from launchkit.description.actions.base import Action, typed_bool, typed_float, typed_int
@@ -39,15 +39,6 @@ class ProcessOptions:
     respawn_max_retries: Value | None = None
     on_exit: Value | None = None
     env: list[tuple[Value, Value]] = field(default_factory=list)
-
-    @staticmethod
-    def attribute_names() -> list[str]:
-        """XML attribute names of these options (``launch_prefix`` is ``launch-prefix``)."""
-        return [
-            f.name.replace("launch_prefix", "launch-prefix")
-            for f in fields(ProcessOptions)
-            if f.name != "env"
-        ]
 
 
 class ProcessBuilder:

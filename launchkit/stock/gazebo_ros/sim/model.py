@@ -91,10 +91,6 @@ class ModelSpec:
     plugins: tuple[PluginSpec, ...] = ()
     sensors: tuple[SensorSpec, ...] = ()
 
-    def plugins_of(self, library: str) -> list[PluginSpec]:
-        """Model plugins whose library is ``library`` (e.g. ``gazebo_ros_diff_drive``)."""
-        return [p for p in self.plugins if p.library == library]
-
 
 def parse_model(urdf_text: str) -> ModelSpec:
     """Read a URDF's structure and ``<gazebo>`` blocks; :class:`ModelError` on bad input."""
