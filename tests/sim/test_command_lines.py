@@ -17,7 +17,7 @@ from launchkit.stock.gazebo_ros.plugin_processes import (
     DIFF_DRIVE_MODULE,
     plugin_command,
 )
-from launchkit.stock.gazebo_ros.server import UsageError, parse_server_args
+from launchkit.stock.gazebo_ros.server_options import UsageError, parse_server_args
 from launchkit.stock.gazebo_ros.sim.diff_drive import DiffDriveParams
 from launchkit.stock.gazebo_ros.sim.model import PluginSpec, RosOptions
 from launchkit.stock.gazebo_ros.spawn_entity import SpawnError, parse_args

@@ -19,7 +19,6 @@ for a model without a joint state plugin; 0 for none, as in Gazebo; see
 
 from __future__ import annotations
 
-import argparse
 import faulthandler
 import importlib
 import os
@@ -29,12 +28,12 @@ from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
 
-from launchkit.errors import UserError
 from launchkit.stock import _entry
 from launchkit.stock.gazebo_ros import messages
 from launchkit.stock.gazebo_ros._shutdown import shutdown_within
 from launchkit.stock.gazebo_ros.camera_node import CameraNodeParams
 from launchkit.stock.gazebo_ros.plugin_processes import PluginProcesses
+from launchkit.stock.gazebo_ros.server_options import ServerOptions, UsageError, parse_server_args
 from launchkit.stock.gazebo_ros.sim.engine import Entity, Simulation, SimulationError
 from launchkit.stock.gazebo_ros.sim.joint_states import JointStateOutput
 from launchkit.stock.gazebo_ros.sim.model import ModelError
@@ -44,68 +43,13 @@ from launchkit.stock.gazebo_ros.sim.sensors import RateGate
 from launchkit.stock.gazebo_ros.sim.world import load_world, resolve_world
 from launchkit.stock.rotations import quaternion_to_rpy
 
-INIT_PLUGIN = "libgazebo_ros_init.so"
-FACTORY_PLUGIN = "libgazebo_ros_factory.so"
-
-
 #: Seconds a stop request may take before the server prints its stacks and exits hard (under
 #: ROS's default SIGINT -> SIGKILL escalation of 10 s).
 STOP_WATCHDOG = 6.0
 
 
-class UsageError(UserError):
-    """A bad command line or world (exit status 2)."""
-
-
-@dataclass(frozen=True)
-class ServerOptions:
-    """The Gazebo-style part of the command line."""
-
-    world: str = "empty"
-    verbose: bool = False
-    server_plugins: tuple[str, ...] = ()
-    gui: bool = False
-    paused: bool = False
-
-    @property
-    def ros_init(self) -> bool:
-        """Whether ``/clock`` is published (``-s libgazebo_ros_init.so``, or no ``-s`` at all)."""
-        return not self.server_plugins or INIT_PLUGIN in self.server_plugins
-
-    @property
-    def factory(self) -> bool:
-        """Whether the spawn/delete services exist."""
-        return not self.server_plugins or FACTORY_PLUGIN in self.server_plugins
-
-
-class _Parser(argparse.ArgumentParser):
-    def error(self, message: str) -> Any:  # type: ignore[override]
-        raise UsageError(message)
-
-
-def parse_server_args(argv: list[str]) -> ServerOptions:
-    """Parse Gazebo's options (everything before ``--ros-args``); :class:`UsageError` if bad."""
-    if "--ros-args" in argv:
-        argv = argv[: argv.index("--ros-args")]
-    parser = _Parser(prog="gazebo", add_help=False)
-    parser.add_argument("world", nargs="?", default="")
-    parser.add_argument("--verbose", action="store_true")
-    parser.add_argument("-s", "--server-plugin", action="append", default=[])
-    parser.add_argument("-g", "--gui-plugin", action="append", default=[])
-    parser.add_argument("-u", "--pause", action="store_true")
-    parser.add_argument("--gui", action="store_true")
-    args = parser.parse_args(argv)
-    return ServerOptions(
-        world=args.world or "empty",
-        verbose=args.verbose,
-        server_plugins=tuple(p.strip() for p in args.server_plugin),
-        gui=args.gui,
-        paused=args.pause,
-    )
-
-
 @dataclass
-class _Runtime:
+class _Spawned:
     """One spawned entity's publishers and plugins."""
 
     entity: Entity
@@ -152,7 +96,7 @@ class SimServer:
         self.clock_gate = RateGate(publish_rate)
         self.state_rate = state_rate
         self.state_gates: dict[str, RateGate] = {}
-        self.runtimes: dict[str, _Runtime] = {}
+        self.spawned: dict[str, _Spawned] = {}
         #: Topics where the implicit joint state streams pause: another node publishes there.
         self.yielded_topics: set[str] = set()
         self.children = PluginProcesses(self.logger.info)
@@ -200,7 +144,7 @@ class SimServer:
             response.success = False
             response.status_message = f"SpawnEntity: {exc}"
             return response
-        self._start_runtime(entity, plugins, xml)
+        self._start_entity(entity, plugins, xml)
         response.success = True
         response.status_message = f"SpawnEntity: Successfully spawned entity [{name}]"
         self.logger.info(response.status_message)
@@ -215,17 +159,17 @@ class SimServer:
             response.status_message = f"DeleteEntity: {exc}"
             return response
         self.children.stop_entity(name)
-        self.runtimes.pop(name, None)
+        self.spawned.pop(name, None)
         response.success = True
         response.status_message = f"DeleteEntity: Successfully deleted entity [{name}]"
         self.logger.info(response.status_message)
         return response
 
-    def _start_runtime(self, entity: Entity, plugins: EntityPlugins, model: str) -> None:
+    def _start_entity(self, entity: Entity, plugins: EntityPlugins, model: str) -> None:
         p, name = self.node, entity.name
         joint_state = messages.message_class("sensor_msgs", "JointState")
         odometry = messages.message_class("nav_msgs", "Odometry")
-        runtime = _Runtime(
+        spawned = _Spawned(
             entity,
             plugins,
             p.create_publisher(joint_state, messages.STATE_TOPIC.format(entity=name), 10),
@@ -238,20 +182,20 @@ class SimServer:
             10,
         )
         for lidar in plugins.lidars:
-            runtime.sensor_pubs[lidar.config.topic] = p.create_publisher(
+            spawned.sensor_pubs[lidar.config.topic] = p.create_publisher(
                 messages.message_class("sensor_msgs", "LaserScan"),
                 lidar.config.topic,
                 self.sensor_qos,
             )
         for output in plugins.joint_states:
             publisher = p.create_publisher(joint_state, output.topic, 10)
-            runtime.joint_state_pubs.append((output, publisher, RateGate(output.rate)))
+            spawned.joint_state_pubs.append((output, publisher, RateGate(output.rate)))
             if output.implicit:
                 self.logger.info(
                     f"'{name}' has no joint state plugin: publishing its joints on {output.topic} "
                     f"at {output.rate:g} Hz while no other node does (joint_state_rate:=0 for none)"
                 )
-        self.runtimes[name] = runtime
+        self.spawned[name] = spawned
         self.state_gates[name] = RateGate(plugins.state_rate(self.state_rate))
         self._yield_joint_state_topics()  # joint_state_publisher may be running already
         for plugin, params in plugins.diff_drives:
@@ -261,8 +205,8 @@ class SimServer:
             self.children.start_camera(name, plugin, camera)
 
     def _command(self, entity: str, msg: Any) -> None:
-        runtime = self.runtimes.get(entity)
-        if runtime is None:
+        spawned = self.spawned.get(entity)
+        if spawned is None:
             return
         names = list(msg.name)
         velocities = list(msg.velocity)
@@ -270,7 +214,7 @@ class SimServer:
         force = max(efforts) if efforts else 5.0
         try:
             self.sim.set_joint_velocities(
-                runtime.entity, dict(zip(names, velocities, strict=False)), force
+                spawned.entity, dict(zip(names, velocities, strict=False)), force
             )
         except SimulationError as exc:
             self.logger.warn(f"joint command for '{entity}' ignored: {exc}")
@@ -280,25 +224,25 @@ class SimServer:
     def _publish(self, now: float) -> None:
         if self.clock_pub is not None and self.clock_gate.due(now):
             self.clock_pub.publish(messages.clock(now))
-        for name, runtime in self.runtimes.items():
+        for name, spawned in self.spawned.items():
             if self.state_gates[name].due(now):
-                self._publish_state(now, runtime)
-            for output, publisher, gate in runtime.joint_state_pubs:
+                self._publish_state(now, spawned)
+            for output, publisher, gate in spawned.joint_state_pubs:
                 if output.implicit and output.topic in self.yielded_topics:
                     continue
                 if gate.due(now):
-                    publisher.publish(self._joint_state(now, runtime.entity, output.joints))
-            for lidar, ranges in runtime.plugins.poll_lidars(now):
+                    publisher.publish(self._joint_state(now, spawned.entity, output.joints))
+            for lidar, ranges in spawned.plugins.poll_lidars(now):
                 scan = messages.laser_scan(lidar.config, now, ranges)
-                runtime.sensor_pubs[lidar.config.topic].publish(scan)
+                spawned.sensor_pubs[lidar.config.topic].publish(scan)
 
-    def _publish_state(self, now: float, runtime: _Runtime) -> None:
+    def _publish_state(self, now: float, spawned: _Spawned) -> None:
         # The diff drive and the camera nodes pair these two by stamp.
-        base = self.sim.base_state(runtime.entity)
-        runtime.truth_pub.publish(
-            messages.odometry(_ground_truth(now, runtime.entity.spec.root_link, base))
+        base = self.sim.base_state(spawned.entity)
+        spawned.truth_pub.publish(
+            messages.odometry(_ground_truth(now, spawned.entity.spec.root_link, base))
         )
-        runtime.state_pub.publish(self._joint_state(now, runtime.entity))
+        spawned.state_pub.publish(self._joint_state(now, spawned.entity))
 
     def _joint_state(self, now: float, entity: Entity, joints: tuple[str, ...] = ()) -> Any:
         """A ``JointState`` of ``joints`` (all movable joints when empty) at ``now``."""
@@ -317,8 +261,8 @@ class SimServer:
         them when it is gone."""
         ours: dict[str, int] = {}
         implicit: set[str] = set()
-        for runtime in self.runtimes.values():
-            for output, _, _ in runtime.joint_state_pubs:
+        for spawned in self.spawned.values():
+            for output, _, _ in spawned.joint_state_pubs:
                 ours[output.topic] = ours.get(output.topic, 0) + 1
                 if output.implicit:
                     implicit.add(output.topic)

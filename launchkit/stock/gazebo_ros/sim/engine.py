@@ -18,7 +18,8 @@ from typing import Any
 from launchkit.stock.gazebo_ros.sim.diff_drive import BaseState
 from launchkit.stock.gazebo_ros.sim.materials import material_rgba
 from launchkit.stock.gazebo_ros.sim.model import ModelError, ModelSpec, parse_model
-from launchkit.stock.gazebo_ros.sim.world import Shape, WorldSpec
+from launchkit.stock.gazebo_ros.sim.scenery import build_scenery
+from launchkit.stock.gazebo_ros.sim.world import WorldSpec
 from launchkit.stock.rotations import conjugate, rotate
 
 Pose = tuple[float, float, float, float, float, float]
@@ -82,7 +83,7 @@ class Simulation:
         self.p.setTimeStep(time_step, physicsClientId=self.client)
         self.entities: dict[str, Entity] = {}
         self.world = world or WorldSpec("empty", True, ())
-        self._build_world(self.world)
+        self.ground = build_scenery(self.p, self.client, self.world)
 
     # -- world -------------------------------------------------------------------------------
 
@@ -103,63 +104,6 @@ class Simulation:
             self.log("EGL renderer plugin failed to load; rendering with TinyRenderer")
             return False
         return True
-
-    def _build_world(self, world: WorldSpec) -> None:
-        if world.ground_plane:
-            shape = self.p.createCollisionShape(self.p.GEOM_PLANE, physicsClientId=self.client)
-            # A thin box, not a plane, as the visual: PyBullet has no visual for a plane and the
-            # EGL renderer crashes on one.
-            visual = self.p.createVisualShape(
-                self.p.GEOM_BOX,
-                halfExtents=(50.0, 50.0, 0.0005),
-                visualFramePosition=(0.0, 0.0, -0.0005),
-                rgbaColor=(0.8, 0.8, 0.8, 1),
-                physicsClientId=self.client,
-            )
-            self.ground = self.p.createMultiBody(0, shape, visual, physicsClientId=self.client)
-        for solid in world.shapes:
-            self._add_shape(solid)
-
-    def _add_shape(self, solid: Shape) -> int:
-        p = self.p
-        if solid.kind == "box":
-            half = [s / 2.0 for s in solid.size]
-            col = p.createCollisionShape(p.GEOM_BOX, halfExtents=half, physicsClientId=self.client)
-            vis = p.createVisualShape(
-                p.GEOM_BOX, halfExtents=half, rgbaColor=solid.rgba, physicsClientId=self.client
-            )
-        elif solid.kind == "cylinder":
-            radius, length = solid.size
-            col = p.createCollisionShape(
-                p.GEOM_CYLINDER, radius=radius, height=length, physicsClientId=self.client
-            )
-            vis = p.createVisualShape(
-                p.GEOM_CYLINDER,
-                radius=radius,
-                length=length,
-                rgbaColor=solid.rgba,
-                physicsClientId=self.client,
-            )
-        else:
-            col = p.createCollisionShape(
-                p.GEOM_SPHERE, radius=solid.size[0], physicsClientId=self.client
-            )
-            vis = p.createVisualShape(
-                p.GEOM_SPHERE,
-                radius=solid.size[0],
-                rgbaColor=solid.rgba,
-                physicsClientId=self.client,
-            )
-        x, y, z, roll, pitch, yaw = solid.pose
-        body: int = p.createMultiBody(
-            solid.mass,
-            col,
-            vis,
-            basePosition=(x, y, z),
-            baseOrientation=p.getQuaternionFromEuler((roll, pitch, yaw)),
-            physicsClientId=self.client,
-        )
-        return body
 
     # -- time ----------------------------------------------------------------------------------
 
