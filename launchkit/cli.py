@@ -121,7 +121,7 @@ def _guarded(action: object, debug: bool) -> int:
 
 
 def _ros_command(command: str, argv: list[str]) -> int:
-    from launchkit.ros_cli.main import main as ros_main  # type: ignore[import-not-found,unused-ignore]
+    from launchkit.ros_cli.main import main as ros_main
 
     return int(ros_main(command, argv))
 

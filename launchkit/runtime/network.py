@@ -55,7 +55,7 @@ class NodeNetwork:
 
 def _start_router(endpoint: str | None) -> Any:
     # zenoh is heavy: imported only when the first node starts
-    from launchkit.ros.router import start_router  # type: ignore[import-not-found,unused-ignore]
+    from launchkit.ros.router import start_router
 
     return start_router(endpoint)
 

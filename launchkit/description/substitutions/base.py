@@ -101,7 +101,7 @@ class Call(Substitution):
         return f"{type(self).__name__}{self.args!r}"
 
     def __eq__(self, other: object) -> bool:
-        return type(other) is type(self) and other.args == self.args  # type: ignore[attr-defined]
+        return type(other) is type(self) and other.args == self.args
 
     def __hash__(self) -> int:
         return hash((type(self), self.args))

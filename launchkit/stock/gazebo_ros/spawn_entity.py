@@ -29,7 +29,7 @@ class SpawnError(UserError):
 
 
 class _Parser(argparse.ArgumentParser):
-    def error(self, message: str) -> Any:  # type: ignore[override]
+    def error(self, message: str) -> Any:
         raise SpawnError(
             f"{message} (expected: -entity NAME (-file PATH | -topic TOPIC | -stdin) "
             "[-x X -y Y -z Z -R R -P P -Y Y] [-timeout S] [-spawn_service_timeout S])"

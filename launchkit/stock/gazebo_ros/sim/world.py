@@ -90,7 +90,7 @@ def _pose(path: Path, element: ET.Element | None) -> Pose:
         raise ModelError(
             f"{path}: <pose>{text}</pose> (expected six numbers: x y z roll pitch yaw)"
         )
-    return values  # type: ignore[return-value]
+    return values
 
 
 def _compose(a: Pose, b: Pose) -> Pose:
