@@ -1,9 +1,9 @@
 """End to end: the seed's gazebo_and_rviz.launch.xml brings the three-wheeled robot up in
 PyBullet, headless; its topics flow, /cmd_vel drives it, and Ctrl-C leaves nothing behind.
 
-The seed robot's wheel conventions are inverted (reference/simulation.md §3.1): as in Gazebo,
-``linear.x > 0`` moves the base toward its own -x (the caster side, where camera and lidar look)
-and ``angular.z > 0`` turns it counter-clockwise.
+The seed robot's wheel conventions are inverted (docs/simulation.md, "Plugins and sensors"): as
+in Gazebo, ``linear.x > 0`` moves the base toward its own -x (the caster side, where camera and
+lidar look) and ``angular.z > 0`` turns it counter-clockwise.
 
 Two topics come from launchkit's choices where Gazebo would leave the seed without them
 (docs/simulation.md): the lidar on ``/scan`` (gazebo_ros: ``/gazebo_lidar/out``) and

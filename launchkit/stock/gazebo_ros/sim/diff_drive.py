@@ -52,7 +52,8 @@ class DiffDriveConfigError(ValueError):
 
 @dataclass(frozen=True)
 class DiffDriveParams:
-    """The plugin's parameters, with gazebo_ros's ROS 2 names and defaults (simulation.md §9.1)."""
+    """The plugin's parameters, with the ROS 2 names and defaults of gazebo_plugins'
+    ``gazebo_ros_diff_drive.cpp``."""
 
     left_joint: str
     right_joint: str

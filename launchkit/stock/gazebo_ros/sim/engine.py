@@ -2,7 +2,7 @@
 
 No ROS here. The owner (the ``gzserver`` node, a test, a benchmark) spawns models from URDF text,
 steps, reads joint and base states, and sets joint velocity targets. Sim time is the step count
-times the step size, so a run driven by step count is bit-for-bit repeatable (simulation.md §8).
+times the step size, so a run driven by step count is bit-for-bit repeatable.
 One thread must own a :class:`Simulation`.
 """
 
@@ -25,7 +25,8 @@ from launchkit.stock.rotations import conjugate, rotate
 Pose = tuple[float, float, float, float, float, float]
 
 #: Lateral friction of passive (undriven, non-fixed) links such as casters: the seed's caster
-#: cannot roll (its joint spins about z only), so with default friction it drags (simulation.md §3).
+#: cannot roll (its joint spins about z only), so with default friction it drags
+#: (docs/simulation.md, "The server").
 PASSIVE_FRICTION = 0.0
 
 
@@ -88,7 +89,7 @@ class Simulation:
     # -- world -------------------------------------------------------------------------------
 
     def _load_egl(self) -> bool:
-        # Must happen before any body exists, or earlier bodies are invisible (§4.3).
+        # Must happen before any body exists: the plugin never shows bodies made before it.
         import pkgutil
 
         loader = pkgutil.get_loader("eglRenderer")

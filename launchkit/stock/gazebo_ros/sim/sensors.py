@@ -1,6 +1,6 @@
 """The ray sensor (lidar) and the camera of a URDF, computed from a :class:`Simulation`.
 
-Conventions are gazebo_ros's for ROS 2 (simulation.md §9.2, §9.3): ray ``i`` at
+Conventions are gazebo_ros's for ROS 2 (docs/simulation.md, "Plugins and sensors"): ray ``i`` at
 ``min_angle + i·(max-min)/(samples-1)`` counter-clockwise in the sensor link frame, +inf beyond
 ``range_max``, -inf under ``range_min``; the camera looks along the link's +x with +z up and its
 ``frame_id`` is the link (not an optical frame).

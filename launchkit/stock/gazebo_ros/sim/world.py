@@ -1,7 +1,7 @@
 """Gazebo world files (SDF), read by our own parser and built with ``createMultiBody``.
 
 ``p.loadSDF`` ignores ``<static>`` and link poses, skips ``model://`` includes and can crash the
-process (simulation.md §7), so worlds are parsed here. Supported: ``<include>`` of
+process (docs/simulation.md, "The server"), so worlds are parsed here. Supported: ``<include>`` of
 ``model://ground_plane`` (and ``model://sun``, which has nothing to simulate), and ``<model>`` with
 ``<static>``, ``<pose>`` and links whose collision/visual geometry is a box, cylinder or sphere.
 """
