@@ -153,7 +153,7 @@ def main() -> None:
         print(f"SIGINT to exit with 10 children: {stop * 1000:.0f} ms")
 
         from launchkit.checks import check_tree
-        from launchkit.frontend.loader import LaunchLoader
+        from launchkit.frontend.launch_loader import LaunchLoader
         from launchkit.packages import PackageIndex
 
         body = "\n".join(

@@ -11,7 +11,7 @@ from typing import IO
 from launchkit.checks import CheckedTree, check_tree, undeclared_arguments
 from launchkit.description.launch_context import LaunchContext, Runner
 from launchkit.errors import PackageNotFoundError
-from launchkit.frontend.loader import LaunchLoader
+from launchkit.frontend.launch_loader import LaunchLoader
 from launchkit.packages import PackageIndex
 from launchkit.runtime.hooks import SupervisorHooks
 

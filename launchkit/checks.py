@@ -25,7 +25,7 @@ from launchkit.description.substitutions import (
 )
 from launchkit.description.substitutions.base import literal
 from launchkit.errors import LaunchArgumentError, LaunchFileError, PackageNotFoundError
-from launchkit.frontend.loader import LaunchLoader
+from launchkit.frontend.launch_loader import LaunchLoader
 from launchkit.packages import PackageIndex
 
 

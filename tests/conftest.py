@@ -11,7 +11,7 @@ import pytest
 from launchkit.checks import check_tree
 from launchkit.description.launch_context import LaunchContext
 from launchkit.description.process_spec import ProcessSpec
-from launchkit.frontend.loader import LaunchLoader
+from launchkit.frontend.launch_loader import LaunchLoader
 from launchkit.packages import PackageIndex
 from launchkit.runtime.recorder import Recorded, Recorder
 

@@ -17,7 +17,7 @@ from launchkit.description.substitutions.base import Text
 from launchkit.errors import LaunchFileError, Location
 from launchkit.frontend.action_parser import ActionParser
 from launchkit.frontend.base_entity import Entity
-from launchkit.frontend.loader import LaunchLoader
+from launchkit.frontend.launch_loader import LaunchLoader
 from launchkit.frontend.tags import launch, ros, standard_parser
 
 

@@ -177,5 +177,5 @@ class ExecuteProcess(Action):
         return builder.build(words, words[0] if words else "", False)
 
     def execute(self, context: LaunchContext) -> None:
-        """Hand the process to the runtime."""
+        """Hand the process to the runner."""
         context.runner.start_process(self.evaluate(context))

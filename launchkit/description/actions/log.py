@@ -51,5 +51,5 @@ class Shutdown(Action):
         self.reason = reason
 
     def execute(self, context: LaunchContext) -> None:
-        """Ask the runtime to shut down."""
+        """Ask the runner to shut down."""
         context.runner.request_shutdown(perform(self.reason, context) or "<shutdown> reached")

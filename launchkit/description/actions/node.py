@@ -131,5 +131,5 @@ class ExecuteNode(Action):
         return join_namespace(base, own)
 
     def execute(self, context: LaunchContext) -> None:
-        """Hand the node's process to the runtime."""
+        """Hand the node's process to the runner."""
         context.runner.start_process(self.evaluate(context))
