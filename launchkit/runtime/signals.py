@@ -41,15 +41,13 @@ class SignalPipe:
         except BlockingIOError:
             return []
 
-    def restore(self) -> None:
-        """Put the previous handlers back and stop writing to the pipe."""
-        for signum, handler in self._previous.items():
-            signal.signal(signum, handler)
-        self._previous.clear()
-        signal.set_wakeup_fd(-1)
-
     def close(self) -> None:
-        """Close the pipe."""
+        """Put the previous handlers back (if :meth:`install` ran), then close the pipe."""
+        if self._previous:
+            for signum, handler in self._previous.items():
+                signal.signal(signum, handler)
+            self._previous.clear()
+            signal.set_wakeup_fd(-1)
         os.close(self._read_fd)
         os.close(self._write_fd)
 

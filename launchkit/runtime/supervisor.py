@@ -122,7 +122,6 @@ class Supervisor:
             while not self._done():
                 self.step(self._timeout())
         finally:
-            self._signals.restore()
             self.close()
         return self.exit_code
 
@@ -358,7 +357,8 @@ class Supervisor:
                 self._send(process, effect)
 
     def close(self) -> None:
-        """Last resort: SIGKILL every group still around, reap, release everything."""
+        """Last resort: SIGKILL every group still around, reap, release everything (the signal
+        handlers last, so a signal during the cleanup cannot interrupt it)."""
         for process in self.processes:
             if process.alive:
                 process.kill_leftovers()
