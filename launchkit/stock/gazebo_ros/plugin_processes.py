@@ -143,10 +143,9 @@ class PluginProcesses:
 
     def start_camera(self, entity: str, plugin: PluginSpec, params: CameraNodeParams) -> None:
         """Start the camera node of ``plugin`` for ``entity`` (it renders in its own process)."""
-        file = Path(self._tmp.name) / f"{entity}-{plugin.name}.yaml"
-        argv = plugin_command(
-            CAMERA_MODULE, entity, plugin, params.as_parameters(), file, remap=False
-        )
+        params_file = Path(self._tmp.name) / f"{entity}-{plugin.name}.yaml"
+        parameters = params.as_parameters()
+        argv = plugin_command(CAMERA_MODULE, entity, plugin, parameters, params_file, remap=False)
         self._start_child(entity, plugin.name, argv)
 
     def _spawn(self, child: Child) -> None:
