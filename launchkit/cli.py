@@ -87,6 +87,7 @@ def build_parser() -> argparse.ArgumentParser:
     exec_.add_argument("package")
     exec_.add_argument("executable")
     exec_.add_argument("args", nargs=argparse.REMAINDER)
+    commands.add_parser("bridge", help="bridge to a ROS 2 DDS graph (see launchkit bridge --help)")
     for name in ROS_COMMANDS:
         commands.add_parser(
             name, help=f"ROS {name} tools (see launchkit {name} --help)", add_help=False
@@ -99,6 +100,10 @@ def main(argv: list[str] | None = None) -> int:
     argv = list(sys.argv[1:] if argv is None else argv)
     if argv and argv[0] in ROS_COMMANDS:
         return _guarded(lambda: _ros_command(argv[0], argv[1:]), debug="--debug" in argv)
+    if argv and argv[0] == "bridge":
+        from launchkit.bridge.cli import main as bridge_main
+
+        return _guarded(lambda: bridge_main(argv[1:]), debug="--debug" in argv)
     args = build_parser().parse_args(argv)
     if args.command is None:
         build_parser().print_help()
