@@ -128,11 +128,13 @@ def run(
     stream: IO[str] | None = None,
     router: str | None = None,
     hooks: SupervisorHooks | None = None,
+    bridge: bool = False,
 ) -> int:
     """Run ``path`` until everything it started has stopped; the exit status.
 
     User mistakes found before anything starts raise :class:`launchkit.errors.UserError`.
     ``hooks`` observes the launch as it runs (the test plugin's event channel uses it).
+    ``bridge`` also runs ``launchkit bridge`` (to a ROS 2 DDS graph) under supervision.
     """
     from launchkit.runtime.logdir import create_run_dir
     from launchkit.runtime.network import NodeNetwork
@@ -142,6 +144,10 @@ def run(
     arguments = dict(arguments or {})
     packages, parser = PackageIndex(), XmlParser()
     tree = check_tree(path, arguments, parser, packages)
+    if bridge:
+        from launchkit.bridge.launch import add_bridge
+
+        add_bridge(tree.top, arguments)
     output = Output(stream or sys.stdout)
     run_dir = create_run_dir(os.environ)
     output.open_logs(run_dir)

@@ -66,6 +66,11 @@ def build_parser() -> argparse.ArgumentParser:
         help='show every process\'s output on the screen (output="both")',
     )
     run.add_argument("--router", help="Zenoh router endpoint to host or join (tcp/HOST:PORT)")
+    run.add_argument(
+        "--bridge",
+        action="store_true",
+        help="also run `launchkit bridge` to the ROS 2 (DDS) graph (needs launchkit[ros2])",
+    )
     # launchkit.testing's event channel (launchkit/runtime/events.py): not for people
     run.add_argument("--events-fd", type=int, help=argparse.SUPPRESS)
     commands.add_parser(
@@ -189,7 +194,7 @@ def _launch(args: argparse.Namespace, hooks: SupervisorHooks | None = None) -> i
     if args.show_all_subprocesses_output:
         os.environ["OVERRIDE_LAUNCH_PROCESS_OUTPUT"] = "both"
     try:
-        return api.run(path, arguments, router=args.router, hooks=hooks)
+        return api.run(path, arguments, router=args.router, hooks=hooks, bridge=args.bridge)
     except LaunchkitError as error:
         error.exit_status = 2  # raised before anything started: the input is at fault
         raise

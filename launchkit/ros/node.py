@@ -262,7 +262,7 @@ class Node(GraphQueries):
         self,
         msg_type: Any,
         topic: str,
-        callback: Callable[[Any], Any],
+        callback: Callable[..., Any],
         qos_profile: QoSProfile | int,
         *,
         raw: bool = False,
