@@ -81,13 +81,19 @@ def _context(
     )
 
 
-def describe(path: Path, arguments: Mapping[str, str] | None = None) -> str:
+def describe(
+    path: Path, arguments: Mapping[str, str] | None = None, *, bridge: bool = False
+) -> str:
     """What running ``path`` would do (processes with command lines, env changes, timers)."""
     from launchkit.runtime.recorder import Recorder, render
 
-    arguments = arguments or {}
+    arguments = dict(arguments or {})
     packages, parser = PackageIndex(), XmlParser()
     tree = check_tree(path, arguments, parser, packages)
+    if bridge:
+        from launchkit.bridge.launch import add_bridge
+
+        add_bridge(tree.top, arguments)
     recorder = Recorder()
     context = _context(recorder, arguments, packages, parser, None)
     recorder.context = context

@@ -189,7 +189,7 @@ def _launch(args: argparse.Namespace, hooks: SupervisorHooks | None = None) -> i
         print(api.show_arguments(path))
         return 0
     if args.print_description:
-        print(api.describe(path, arguments))
+        print(api.describe(path, arguments, bridge=args.bridge))
         return 0
     if args.show_all_subprocesses_output:
         os.environ["OVERRIDE_LAUNCH_PROCESS_OUTPUT"] = "both"
