@@ -47,7 +47,7 @@ class Bridge:
         self.options = options
         rclpy = import_rclpy()
         from rclpy.callback_groups import ReentrantCallbackGroup
-        from rclpy.executors import MultiThreadedExecutor
+        from rclpy.executors import MultiThreadedExecutor, SingleThreadedExecutor
         from rclpy.signals import SignalHandlerOptions
 
         self._zenoh_context = Context(router=options.router)
@@ -62,15 +62,25 @@ class Bridge:
             context=self._dds_context,
             signal_handler_options=SignalHandlerOptions.NO,
         )
-        self.dds_node = rclpy.create_node(
-            NODE_NAME,
-            context=self._dds_context,
-            start_parameter_services=False,
-            enable_rosout=False,
+        # two rclpy nodes: topics on a single-threaded executor (rclpy's multi-threaded one
+        # costs ~2 ms a callback here), services on a multi-threaded one, where a forwarded
+        # call may block its thread for as long as the server takes
+        self.dds_node, self.dds_services_node = (
+            rclpy.create_node(
+                name,
+                context=self._dds_context,
+                start_parameter_services=False,
+                enable_rosout=False,
+            )
+            for name in (NODE_NAME, NODE_NAME + "_services")
         )
         self._services_group = ReentrantCallbackGroup()
-        self._dds_executor = MultiThreadedExecutor(num_threads=4, context=self._dds_context)
+        self._dds_executor = SingleThreadedExecutor(context=self._dds_context)
         self._dds_executor.add_node(self.dds_node)
+        self._dds_services_executor = MultiThreadedExecutor(
+            num_threads=4, context=self._dds_context
+        )
+        self._dds_services_executor.add_node(self.dds_services_node)
         self._zenoh_executor = Executor(context=self._zenoh_context)
         self._zenoh_executor.add_node(self.zenoh_node)
         self._guard = EchoGuard()
@@ -81,7 +91,15 @@ class Bridge:
         self.changed = threading.Event()
         self._stop = threading.Event()
         self._threads = [
-            threading.Thread(target=self._spin_dds, name="bridge-dds", daemon=True),
+            threading.Thread(
+                target=self._spin_dds, args=(self._dds_executor,), name="bridge-dds", daemon=True
+            ),
+            threading.Thread(
+                target=self._spin_dds,
+                args=(self._dds_services_executor,),
+                name="bridge-dds-services",
+                daemon=True,
+            ),
             threading.Thread(target=self._spin_zenoh, name="bridge-zenoh", daemon=True),
         ]
         for thread in self._threads:
@@ -89,10 +107,10 @@ class Bridge:
         self._zenoh_context.graph.add_listener(lambda token, appeared: self.changed.set())
 
     # spinning ----------------------------------------------------------------------------------
-    def _spin_dds(self) -> None:
+    def _spin_dds(self, executor: Any) -> None:
         while not self._stop.is_set():
             try:
-                self._dds_executor.spin_once(timeout_sec=0.1)
+                executor.spin_once(timeout_sec=0.1)
             except Exception as exc:  # a route closed under a callback: log, go on
                 if not self._stop.is_set():
                     self.log.error(f"DDS side: {exc}", throttle_duration_sec=5.0)
@@ -128,7 +146,7 @@ class Bridge:
             zenoh_view(
                 self._zenoh_context.graph.tokens(), str(self.zenoh_node.context.session.zid())
             ),
-            dds_view(self.dds_node),
+            dds_view(self.dds_node, [self.dds_node, self.dds_services_node]),
             self.options.names,
             self.options.services,
         )
@@ -189,7 +207,9 @@ class Bridge:
             if (route.service, route.type_name) in self._missing:
                 return
             try:
-                current = ServiceBridge(route, self.zenoh_node, self.dds_node, self._services_group)
+                current = ServiceBridge(
+                    route, self.zenoh_node, self.dds_services_node, self._services_group
+                )
             except MissingTypeError as exc:
                 self._missing.add((route.service, route.type_name))
                 self._refuse(route.service, str(exc))
@@ -225,8 +245,10 @@ class Bridge:
         self._stop.set()
         for thread in self._threads:
             thread.join(timeout=5)
-        self._dds_executor.shutdown(timeout_sec=1.0)
+        for executor in (self._dds_executor, self._dds_services_executor):
+            executor.shutdown(timeout_sec=1.0)
         self.dds_node.destroy_node()
+        self.dds_services_node.destroy_node()
         self._dds_context.try_shutdown()
         self._zenoh_context.shutdown()
 

@@ -70,22 +70,25 @@ def zenoh_view(tokens: Iterable[Token], own_zid: str) -> GraphView:
     return view
 
 
-def dds_view(node: Any) -> GraphView:
-    """The DDS side, asked from the rclpy ``node`` (its own endpoints left out)."""
-    own = (node.get_name(), node.get_namespace())
-    # rclpy counts servers without saying whose: one less for each service the node serves
-    own_services = {name for name, _ in node.get_service_names_and_types_by_node(*own)}
+def dds_view(node: Any, own_nodes: list[Any]) -> GraphView:
+    """The DDS side, asked from the rclpy ``node``; the endpoints of ``own_nodes`` (the
+    bridge's rclpy nodes) left out."""
+    owners = {(n.get_name(), n.get_namespace()) for n in own_nodes}
+    # rclpy counts servers without saying whose: one less for each service the bridge serves
+    own_services = [
+        name for owner in owners for name, _ in node.get_service_names_and_types_by_node(*owner)
+    ]
     view = GraphView()
     for name, types in node.get_topic_names_and_types():
         publishers = [
             info
             for info in node.get_publishers_info_by_topic(name)
-            if (info.node_name, info.node_namespace) != own
+            if (info.node_name, info.node_namespace) not in owners
         ]
         subscriptions = [
             info
             for info in node.get_subscriptions_info_by_topic(name)
-            if (info.node_name, info.node_namespace) != own
+            if (info.node_name, info.node_namespace) not in owners
         ]
         if not publishers and not subscriptions:
             continue
@@ -94,7 +97,7 @@ def dds_view(node: Any) -> GraphView:
         ends.publishers = [from_rclpy_qos(p.qos_profile, DDS_DEFAULT_DEPTH) for p in publishers]
         ends.subscriptions = len(subscriptions)
     for name, types in node.get_service_names_and_types():
-        servers = node.count_services(name) - (1 if name in own_services else 0)
+        servers = node.count_services(name) - own_services.count(name)
         if servers > 0:
             service = view.service(name)
             service.types.update(types)

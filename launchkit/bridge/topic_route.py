@@ -93,9 +93,21 @@ class TopicBridge:
         self._writes.write(data, self._sink.publish)
 
     def _from_dds(self, data: bytes, info: dict[str, Any]) -> None:
-        if self._closed or self._writes.is_own(data, info):
-            return  # a sample the bridge itself wrote to DDS
-        self._sink.publish(data)
+        # rclpy's executor takes one sample per wake-up (~100 us of Python each): take what
+        # else is waiting here, so a burst costs one wake-up
+        source = self._source
+        while not self._closed:
+            # Fast DDS hands over an empty sample when a writer goes away (no data, only the
+            # news): CDR has at least its 4-byte header; and a sample the bridge wrote goes back
+            if len(data) >= 4 and not self._writes.is_own(data, info):
+                self._sink.publish(data)
+            if source is None:
+                return
+            with source.handle:
+                taken = source.handle.take_message(self._dds_class, True)
+            if taken is None:
+                return
+            data, info = taken
 
     def close(self) -> None:
         """Undeclare both ends (the source first, so nothing arrives at a closed sink)."""
