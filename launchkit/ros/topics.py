@@ -53,6 +53,9 @@ class _Entity:
 
     def _announce(self) -> None:
         self._token = self.node.context.session.liveliness().declare_token(self.token_key)
+        # follow the graph from the first publisher or subscription on, so that graph queries
+        # soon after (get_node_names, get_subscription_count) find it already filled
+        _ = self.node.context.graph
 
     def _undeclare(self, *entities: Any) -> None:
         for entity in (*entities, self._token):
