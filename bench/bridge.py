@@ -9,7 +9,9 @@ and, with every publisher and subscriber its own process, measures:
     native p50 (what a subscriber sees on top of a publisher of its own kind);
   * throughput of 100 B messages, each way (publisher flat out for 3 s; received per second);
   * how long a new topic takes to reach the other side: from the publisher's creation to the
-    subscriber's first message, with the subscriber already waiting, each way.
+    subscriber's first message, with the subscriber already waiting, each way and natively (a
+    DDS publisher is created once its process's participant has discovered the others, 3
+    nodes: participant discovery is Fast DDS's own 0.25-1.8 s, not the bridge's).
 Payloads are std_msgs/UInt8MultiArray CDR carrying the sender's CLOCK_MONOTONIC; both sides
 read them raw, nothing is decoded. The last line is ``bridge: added p50 A us (100 B, launchkit
 -> DDS), throughput N msg/s (DDS -> launchkit), new topic T ms``.
@@ -56,15 +58,16 @@ def stamp_of(data: bytes) -> tuple[int, int]:
 class Side:
     """Publishes and subscribes raw CDR bytes on one side: launchkit (``lk``) or rclpy (``dds``)."""
 
-    def __init__(self, kind: str) -> None:
+    def __init__(self, kind: str, name: str = "") -> None:
         self.kind = kind
+        name = name or f"bench_{os.getpid()}"
         if kind == "lk":
             import launchkit.ros as ros
             from launchkit.ros.msgs import get_message
 
             ros.init([])
             self.ros = ros
-            self.node = ros.Node(f"bench_{os.getpid()}")
+            self.node = ros.Node(name)
             self.cls = get_message(TYPE)
         else:
             import rclpy
@@ -73,7 +76,7 @@ class Side:
 
             rclpy.init()
             self.ros = rclpy
-            self.node = rclpy.create_node(f"bench_{os.getpid()}")
+            self.node = rclpy.create_node(name)
             self.executor = SingleThreadedExecutor()
             self.executor.add_node(self.node)
             self.cls = UInt8MultiArray
@@ -159,7 +162,7 @@ def role_sub(kind: str, topic: str, seconds: float, warmup: int) -> None:
 def role_first(kind: str, topic: str, timeout: float) -> None:
     """Wait for the first message on ``topic``; report its one-way time (publisher creation
     time travels in the payload's stamp, sequence 0)."""
-    side = Side(kind)
+    side = Side(kind, "first" + topic.replace("/", "_"))
     got: list[int] = []
 
     def on_data(data: bytes) -> None:
@@ -175,9 +178,13 @@ def role_first(kind: str, topic: str, timeout: float) -> None:
     side.close()
 
 
-def role_new_pub(kind: str, topic: str, seconds: float) -> None:
+def role_new_pub(kind: str, topic: str, seconds: float, peer: str) -> None:
     """Create a publisher and publish at 1 kHz, every stamp the creation time (seq 0)."""
     side = Side(kind)
+    if kind == "dds":  # an established DDS node: its participant already knows the others
+        deadline = time.monotonic() + 30
+        while peer not in side.node.get_node_names() and time.monotonic() < deadline:
+            _idle(side, 0.01)
     print("READY", flush=True)
     created = time.monotonic_ns()
     pub = side.publisher(topic)
@@ -248,7 +255,8 @@ def new_topic(env: dict[str, str], src: str, dst: str) -> float | None:
     first = _child(env, "first", dst, topic, "20")
     _wait_line(first, "READY")
     time.sleep(1.0)  # the subscriber's own discovery is not what is measured
-    pub = _child(env, "new_pub", src, topic, "6")
+    peer = "first" + topic.replace("/", "_") if dst == "dds" else "launchkit_bridge"
+    pub = _child(env, "new_pub", src, topic, "6", peer)
     result = _result(first)
     _result(pub)
     return None if result["first_ns"] is None else result["first_ns"] / 1e6
@@ -264,7 +272,7 @@ def main() -> int:
         role, kind, *rest = args.role
         functions = {"pub": role_pub, "sub": role_sub, "first": role_first, "new_pub": role_new_pub}
         conv = {"pub": (str, int, float, float), "sub": (str, float, int), "first": (str, float),
-                "new_pub": (str, float)}[role]  # fmt: skip
+                "new_pub": (str, float, str)}[role]  # fmt: skip
         functions[role](kind, *[c(v) for c, v in zip(conv, rest, strict=True)])  # type: ignore[operator]
         return 0
 
@@ -301,7 +309,7 @@ def main() -> int:
             *_, n, rate = measure(env, src, dst, 100, 0.0, 3.0)
             results[("rate", src, dst)] = rate
             print(f"throughput 100 B {src:>3} -> {dst:<3} {rate:9.0f} msg/s received (n={n})")
-        for src, dst in (("lk", "dds"), ("dds", "lk")):
+        for src, dst in (("lk", "lk"), ("dds", "dds"), ("lk", "dds"), ("dds", "lk")):
             times = [new_topic(env, src, dst) for _ in range(3 if args.quick else 5)]
             shown = ", ".join("lost" if t is None else f"{t:.0f}" for t in times)
             valid = [t for t in times if t is not None]
