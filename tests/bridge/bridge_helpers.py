@@ -20,6 +20,7 @@ from typing import Any
 import launchkit.ros as ros
 
 DDS_ENV = {"ROS_AUTOMATIC_DISCOVERY_RANGE": "LOCALHOST"}
+RCLPY_MISSING = "the real rclpy is not installed: its wheels need CPython 3.11 on Linux x86_64"
 
 
 def wait_until(predicate: Callable[[], bool], timeout: float, what: str) -> None:

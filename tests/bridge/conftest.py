@@ -5,23 +5,16 @@ from __future__ import annotations
 from collections.abc import Iterator
 
 import pytest
-from bridge_helpers import DDS_ENV, BridgeProcess, DdsPeer, LaunchkitPeer
+from bridge_helpers import DDS_ENV, RCLPY_MISSING, BridgeProcess, DdsPeer, LaunchkitPeer
 
 from launchkit.ros.router import start_router
 from launchkit.testing._isolation import domain_id, free_loopback_port, router_endpoint
 
-try:
-    import rclpy  # noqa: F401
-except ImportError as exc:  # pragma: no cover - depends on the platform
-    pytest.skip(
-        f"the real rclpy is not installed ({exc}); its wheels need CPython 3.11 on Linux x86_64",
-        allow_module_level=True,
-    )
-
 
 @pytest.fixture(scope="module")
 def dds_domain() -> Iterator[int]:
-    """This module's ROS domain, with DDS discovery kept on loopback."""
+    """This module's ROS domain, with DDS discovery kept on loopback (skips without rclpy)."""
+    pytest.importorskip("rclpy", reason=RCLPY_MISSING)
     with pytest.MonkeyPatch.context() as patch:
         domain = domain_id()
         for name, value in DDS_ENV.items():

@@ -7,14 +7,15 @@ from collections.abc import Iterator
 from typing import Any
 
 import pytest
-from bridge_helpers import DDS_ENV, DdsPeer, wait_until
+from bridge_helpers import DDS_ENV, RCLPY_MISSING, DdsPeer, wait_until
 
 pytestmark = pytest.mark.filterwarnings("ignore:module 'sre_.*' is deprecated:DeprecationWarning")
 
 
 @pytest.fixture(scope="module")
 def robot(launch_module: Any) -> Any:
-    """The robot launch with the bridge, without the viewer."""
+    """The robot launch with the bridge, without the viewer (skips without rclpy)."""
+    pytest.importorskip("rclpy", reason=RCLPY_MISSING)
     return launch_module(
         "robot_wheel",
         "gazebo_and_rviz.launch.xml",
