@@ -4,6 +4,7 @@ what is, and opens, re-opens, (de)activates or closes routes to match."""
 
 from __future__ import annotations
 
+import os
 import threading
 from dataclasses import dataclass, field
 from typing import Any
@@ -14,12 +15,17 @@ from launchkit.bridge.graph_view import dds_view, zenoh_view
 from launchkit.bridge.plan import DDS, ZENOH, NameFilter, ServiceRoute, TopicRoute, plan
 from launchkit.bridge.service_route import ServiceBridge
 from launchkit.bridge.topic_route import MissingTypeError, TopicBridge
+from launchkit.errors import RuntimeLaunchError, UserError
 from launchkit.ros.context import Context
 from launchkit.ros.executor import Executor
 from launchkit.ros.node import Node
 from launchkit.ros.qos import QoSProfile
 
 NODE_NAME = "launchkit_bridge"
+
+
+class BridgeUsageError(UserError):
+    """The bridge cannot run in this environment as asked."""
 
 
 @dataclass
@@ -45,6 +51,12 @@ class Bridge:
 
     def __init__(self, options: BridgeOptions) -> None:
         self.options = options
+        if os.environ.get("RMW_IMPLEMENTATION") == "rmw_zenoh_cpp":
+            raise BridgeUsageError(
+                "RMW_IMPLEMENTATION=rmw_zenoh_cpp: the bridge joins a DDS graph, and rmw_zenoh "
+                "nodes reach launchkit's router without it (docs/ros2-interop.md)",
+                expected="RMW_IMPLEMENTATION unset or a DDS one for the bridge",
+            )
         rclpy = import_rclpy()
         from rclpy.callback_groups import ReentrantCallbackGroup
         from rclpy.executors import MultiThreadedExecutor, SingleThreadedExecutor
@@ -57,11 +69,16 @@ class Bridge:
         )
         self.log = self.zenoh_node.get_logger()
         self._dds_context = rclpy.Context()
-        rclpy.init(
-            args=options.ros_argv,
-            context=self._dds_context,
-            signal_handler_options=SignalHandlerOptions.NO,
-        )
+        try:
+            rclpy.init(
+                args=options.ros_argv,
+                context=self._dds_context,
+                signal_handler_options=SignalHandlerOptions.NO,
+            )
+        except Exception as exc:  # rcl's errors (a wrong RMW_IMPLEMENTATION, say): one line
+            self._zenoh_context.shutdown()
+            message = " ".join(str(exc).split())
+            raise RuntimeLaunchError(f"rclpy cannot start: {message}") from None
         # two rclpy nodes: topics on a single-threaded executor (rclpy's multi-threaded one
         # costs ~2 ms a callback here), services on a multi-threaded one, where a forwarded
         # call may block its thread for as long as the server takes

@@ -14,7 +14,7 @@ from launchkit.testing._isolation import domain_id, free_loopback_port, router_e
 @pytest.fixture(scope="module")
 def dds_domain() -> Iterator[int]:
     """This module's ROS domain, with DDS discovery kept on loopback (skips without rclpy)."""
-    pytest.importorskip("rclpy", reason=RCLPY_MISSING)
+    pytest.importorskip("rclpy", reason=RCLPY_MISSING, exc_type=ImportError)
     with pytest.MonkeyPatch.context() as patch:
         domain = domain_id()
         for name, value in DDS_ENV.items():

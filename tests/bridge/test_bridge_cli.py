@@ -70,3 +70,10 @@ def test_only_the_chosen_topics_are_bridged(
     finally:
         assert chosen.stop() == 0
     assert not any("bridging /other" in line for line in chosen.lines)
+
+
+def test_rmw_zenoh_as_the_rmw_is_refused_with_the_way_that_needs_no_bridge() -> None:
+    result = _bridge(env={"RMW_IMPLEMENTATION": "rmw_zenoh_cpp"})
+    assert result.returncode == 2
+    lines = result.stderr.strip().splitlines()
+    assert len(lines) == 1 and "RMW_IMPLEMENTATION=rmw_zenoh_cpp" in lines[0]

@@ -15,7 +15,7 @@ pytestmark = pytest.mark.filterwarnings("ignore:module 'sre_.*' is deprecated:De
 @pytest.fixture(scope="module")
 def robot(launch_module: Any) -> Any:
     """The robot launch with the bridge, without the viewer (skips without rclpy)."""
-    pytest.importorskip("rclpy", reason=RCLPY_MISSING)
+    pytest.importorskip("rclpy", reason=RCLPY_MISSING, exc_type=ImportError)
     return launch_module(
         "robot_wheel",
         "gazebo_and_rviz.launch.xml",
