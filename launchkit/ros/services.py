@@ -51,10 +51,14 @@ class _ServiceEntity:
             qos,
         )
         self.gid = gid_of(self.token_key)
-        self._token: Any = node.context.session.liveliness().declare_token(self.token_key)
+        self._token: Any = None
+
+    def _announce(self) -> None:
+        # after the queryable: a client that sees the token must find the server behind it
+        self._token = self.node.context.session.liveliness().declare_token(self.token_key)
 
     def _undeclare(self, entity: Any) -> None:
-        for item in (entity, self._token):
+        for item in (self._token, entity):
             try:
                 item.undeclare()
             except Exception:  # the session may be closed already
@@ -90,6 +94,7 @@ class Service(_ServiceEntity):
         self._queryable = node.context.session.declare_queryable(
             self.key, self._on_query, complete=True
         )
+        self._announce()
 
     def _on_query(self, query: zenoh.Query) -> None:
         payload = query.payload
@@ -197,6 +202,7 @@ class Client(_ServiceEntity):
         self.raw = raw
         self._sequence = 0
         self._lock = threading.Lock()
+        self._announce()
 
     def service_is_ready(self) -> bool:
         """Whether a server for this service exists now."""

@@ -207,3 +207,48 @@ def test_keep_last_requests_beyond_the_depth_discard_the_oldest_as_rmw_zenoh(
     spin_until(server, second.done, 10, "the second request to be answered")
     assert second.result().success is True
     assert "Query queue depth of 1 reached" in capsys.readouterr().err
+
+
+def test_a_server_answers_as_soon_as_its_token_is_seen(
+    contexts: Callable[[], Context], router_endpoint: str
+) -> None:
+    # a client reacting to the SS token at once must find the queryable behind it (the token
+    # is declared after the queryable, on the same link to the router)
+    import queue
+
+    import zenoh
+
+    from launchkit.ros.keyexpr import LIVELINESS_PREFIX, parse_token
+    from launchkit.ros.session import close_session, open_session, peer_config
+
+    watcher = open_session(peer_config(router_endpoint))
+    answered: queue.Queue[tuple[str, int]] = queue.Queue()
+    request = SetBool.Request(data=True)
+    from launchkit.ros.msgs import serialize
+
+    payload = serialize(request, "std_srvs/srv/SetBool_Request")
+
+    def on_token(sample: zenoh.Sample) -> None:
+        token = parse_token(str(sample.key_expr))
+        if token is None or token.kind != "SS" or sample.kind != zenoh.SampleKind.PUT:
+            return
+        from launchkit.ros.keyexpr import topic_key
+
+        key = topic_key(token.domain, token.topic, token.type_name, token.type_hash)
+        replies = list(watcher.get(key, payload=payload, timeout=10.0))
+        answered.put((token.topic, len(replies)))
+
+    subscriber = watcher.liveliness().declare_subscriber(f"{LIVELINESS_PREFIX}/**", on_token)
+    try:
+        server = Node("eager_server", context=contexts(), start_parameter_services=False)
+        halt = _serve_in_thread(server)
+        try:
+            for i in range(10):
+                server.create_service(SetBool, f"/eager_{i}", lambda q, r: r)
+            results = dict(answered.get(timeout=30) for _ in range(10))
+        finally:
+            halt()
+        assert results == {f"/eager_{i}": 1 for i in range(10)}
+    finally:
+        subscriber.undeclare()
+        close_session(watcher)
