@@ -81,13 +81,19 @@ def _context(
     )
 
 
-def describe(path: Path, arguments: Mapping[str, str] | None = None) -> str:
+def describe(
+    path: Path, arguments: Mapping[str, str] | None = None, *, bridge: bool = False
+) -> str:
     """What running ``path`` would do (processes with command lines, env changes, timers)."""
     from launchkit.runtime.recorder import Recorder, render
 
-    arguments = arguments or {}
+    arguments = dict(arguments or {})
     packages, loader = PackageIndex(), LaunchLoader()
     tree = check_tree(path, arguments, loader, packages)
+    if bridge:
+        from launchkit.bridge.launch import add_bridge
+
+        add_bridge(tree.top, arguments)
     recorder = Recorder()
     context = _context(recorder, arguments, packages, loader, None)
     recorder.context = context
@@ -128,11 +134,13 @@ def run(
     stream: IO[str] | None = None,
     router: str | None = None,
     hooks: SupervisorHooks | None = None,
+    bridge: bool = False,
 ) -> int:
     """Run ``path`` until everything it started has stopped; the exit status.
 
     User mistakes found before anything starts raise :class:`launchkit.errors.UserError`.
     ``hooks`` observes the launch as it runs (the test plugin's event channel uses it).
+    ``bridge`` also runs ``launchkit bridge`` (to a ROS 2 DDS graph) under supervision.
     """
     from launchkit.runtime.logdir import create_run_dir
     from launchkit.runtime.network import NodeNetwork
@@ -142,6 +150,10 @@ def run(
     arguments = dict(arguments or {})
     packages, loader = PackageIndex(), LaunchLoader()
     tree = check_tree(path, arguments, loader, packages)
+    if bridge:
+        from launchkit.bridge.launch import add_bridge
+
+        add_bridge(tree.top, arguments)
     output = Output(stream or sys.stdout)
     run_dir = create_run_dir(os.environ)
     output.open_logs(run_dir)

@@ -66,6 +66,11 @@ def build_parser() -> argparse.ArgumentParser:
         help='show every process\'s output on the screen (output="both")',
     )
     run.add_argument("--router", help="Zenoh router endpoint to host or join (tcp/HOST:PORT)")
+    run.add_argument(
+        "--bridge",
+        action="store_true",
+        help="also run `launchkit bridge` to the ROS 2 (DDS) graph (needs launchkit[ros2])",
+    )
     # launchkit.testing's event channel (launchkit/runtime/events.py): not for people
     run.add_argument("--events-fd", type=int, help=argparse.SUPPRESS)
     commands.add_parser(
@@ -87,6 +92,7 @@ def build_parser() -> argparse.ArgumentParser:
     exec_.add_argument("package")
     exec_.add_argument("executable")
     exec_.add_argument("args", nargs=argparse.REMAINDER)
+    commands.add_parser("bridge", help="bridge to a ROS 2 DDS graph (see launchkit bridge --help)")
     for name in ROS_COMMANDS:
         commands.add_parser(
             name, help=f"ROS {name} tools (see launchkit {name} --help)", add_help=False
@@ -99,6 +105,10 @@ def main(argv: list[str] | None = None) -> int:
     argv = list(sys.argv[1:] if argv is None else argv)
     if argv and argv[0] in ROS_COMMANDS:
         return _guarded(lambda: _ros_command(argv[0], argv[1:]), debug="--debug" in argv)
+    if argv and argv[0] == "bridge":
+        from launchkit.bridge.cli import main as bridge_main
+
+        return _guarded(lambda: bridge_main(argv[1:]), debug="--debug" in argv)
     args = build_parser().parse_args(argv)
     if args.command is None:
         build_parser().print_help()
@@ -179,12 +189,12 @@ def _launch(args: argparse.Namespace, hooks: SupervisorHooks | None = None) -> i
         print(api.show_arguments(path))
         return 0
     if args.print_description:
-        print(api.describe(path, arguments))
+        print(api.describe(path, arguments, bridge=args.bridge))
         return 0
     if args.show_all_subprocesses_output:
         os.environ["OVERRIDE_LAUNCH_PROCESS_OUTPUT"] = "both"
     try:
-        return api.run(path, arguments, router=args.router, hooks=hooks)
+        return api.run(path, arguments, router=args.router, hooks=hooks, bridge=args.bridge)
     except LaunchkitError as error:
         error.exit_status = 2  # raised before anything started: the input is at fault
         raise

@@ -101,8 +101,8 @@ class Token:
     key: str
     domain: int
     zid: str
-    node_id: int
-    entity_id: int
+    node_id: str
+    entity_id: str
     kind: str
     enclave: str
     namespace: str
@@ -124,26 +124,28 @@ class Token:
 
 
 def parse_token(key: str) -> Token | None:
-    """Parse a liveliness key expression; None if it is not an rmw_zenoh token."""
+    """Parse a liveliness key expression; None if rmw_zenoh would reject it.
+
+    The checks are rmw_zenoh 0.2.x's (``liveliness_utils.cpp:Entity::make(keyexpr)``): at least
+    9 ``/`` parts for a node and 13 for an entity, none empty, the ``@ros2_lv`` prefix, a known
+    kind, a numeric domain and a valid QoS string; node and entity ids are any text.
+    """
     parts = key.split("/")
-    if len(parts) < 9 or parts[0] != LIVELINESS_PREFIX:
+    if len(parts) < 9 or parts[0] != LIVELINESS_PREFIX or not all(parts):
         return None
-    try:
-        domain, node_id, entity_id = int(parts[1]), int(parts[3]), int(parts[4])
-    except ValueError:
+    if not parts[1].isascii() or not parts[1].isdigit():
         return None
     kind = parts[5]
-    namespace = demangle(parts[7]) or "/"
     common = dict(
         key=key,
-        domain=domain,
+        domain=int(parts[1]),
         zid=parts[2],
-        node_id=node_id,
-        entity_id=entity_id,
+        node_id=parts[3],
+        entity_id=parts[4],
         kind=kind,
         enclave=demangle(parts[6]) or "/",
-        namespace=namespace,
-        node_name=parts[8],
+        namespace=demangle(parts[7]) or "/",
+        node_name=demangle(parts[8]),
     )
     if kind == "NN":
         return Token(**common)  # type: ignore[arg-type]
@@ -156,8 +158,8 @@ def parse_token(key: str) -> Token | None:
     return Token(
         **common,  # type: ignore[arg-type]
         topic=demangle(parts[9]),
-        type_name=ros_type_name(parts[10]),
-        type_hash=parts[11],
+        type_name=ros_type_name(demangle(parts[10])),
+        type_hash=demangle(parts[11]),
         qos=qos,
     )
 

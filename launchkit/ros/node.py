@@ -3,7 +3,7 @@
 from __future__ import annotations
 
 from collections.abc import Callable
-from typing import Any
+from typing import Any, TypeVar
 
 from launchkit.ros import names
 from launchkit.ros.arguments import parse_ros_args
@@ -12,14 +12,18 @@ from launchkit.ros.context import Context, default_context
 from launchkit.ros.executor import Executor, Work, WorkQueue
 from launchkit.ros.keyexpr import node_token, topic_key
 from launchkit.ros.logging import RcutilsLogger, apply_log_levels
+from launchkit.ros.node_graph import GraphQueries
 from launchkit.ros.node_params import ParameterMethods, ParameterStore
 from launchkit.ros.params import Parameter, overrides_for
-from launchkit.ros.qos import QoSProfile, as_profile
+from launchkit.ros.qos import QoSProfile, as_profile, qos_profile_services_default
+from launchkit.ros.services import Client, Service
 from launchkit.ros.timer import Timer
 from launchkit.ros.topics import Publisher, Subscription
 
+_E = TypeVar("_E")
 
-class Node(ParameterMethods):
+
+class Node(ParameterMethods, GraphQueries):
     """A ROS node: a name in a namespace, owning publishers, subscriptions, timers, services.
 
     ``--ros-args`` of the process (``-r __node:=``, ``-r __ns:=``, ``-r from:=to``, ``-p``,
@@ -178,24 +182,22 @@ class Node(ParameterMethods):
         self, msg_type: Any, topic: str, qos_profile: QoSProfile | int, **_: Any
     ) -> Publisher:
         """A publisher of ``msg_type`` on ``topic`` (``qos_profile``: a profile or a depth)."""
-        pub = Publisher(self, msg_type, topic, as_profile(qos_profile))
-        self._entities.append(pub)
-        return pub
+        return self._own(Publisher(self, msg_type, topic, as_profile(qos_profile)))
 
     def create_subscription(
         self,
         msg_type: Any,
         topic: str,
-        callback: Callable[[Any], Any],
+        callback: Callable[..., Any],
         qos_profile: QoSProfile | int,
         *,
         raw: bool = False,
         **_: Any,
     ) -> Subscription:
         """Call ``callback(msg)`` (in the spinning thread) for each message on ``topic``."""
-        sub = Subscription(self, msg_type, topic, callback, as_profile(qos_profile), raw)
-        self._entities.append(sub)
-        return sub
+        return self._own(
+            Subscription(self, msg_type, topic, callback, as_profile(qos_profile), raw)
+        )
 
     def create_timer(
         self,
@@ -217,22 +219,29 @@ class Node(ParameterMethods):
         return Rate(frequency, clock or Clock(clock_type=ClockType.STEADY_TIME))
 
     def create_service(
-        self, srv_type: Any, srv_name: str, callback: Callable[[Any, Any], Any], **_: Any
+        self,
+        srv_type: Any,
+        srv_name: str,
+        callback: Callable[..., Any],
+        *,
+        qos_profile: QoSProfile | int = qos_profile_services_default,
+        raw: bool = False,
+        **_: Any,
     ) -> Any:
-        """Serve ``srv_name``: ``callback(request, response)`` returns the response."""
-        from launchkit.ros.services import Service
+        """Serve ``srv_name``: ``callback(request, response)`` returns the response (raw: bytes)."""
+        return self._own(Service(self, srv_type, srv_name, callback, as_profile(qos_profile), raw))
 
-        service = Service(self, srv_type, srv_name, callback)
-        self._entities.append(service)
-        return service
-
-    def create_client(self, srv_type: Any, srv_name: str, **_: Any) -> Any:
+    def create_client(
+        self,
+        srv_type: Any,
+        srv_name: str,
+        *,
+        qos_profile: QoSProfile | int = qos_profile_services_default,
+        raw: bool = False,
+        **_: Any,
+    ) -> Any:
         """A client of ``srv_name`` (``call``, ``call_async``, ``wait_for_service``)."""
-        from launchkit.ros.services import Client
-
-        client = Client(self, srv_type, srv_name)
-        self._entities.append(client)
-        return client
+        return self._own(Client(self, srv_type, srv_name, as_profile(qos_profile), raw))
 
     def destroy_publisher(self, publisher: Publisher) -> bool:
         """Undeclare ``publisher``."""
@@ -261,31 +270,6 @@ class Node(ParameterMethods):
         client.destroy()
         return True
 
-    # graph --------------------------------------------------------------------------------
-    def count_publishers(self, topic_name: str) -> int:
-        """Publishers on ``topic_name`` anywhere in the graph."""
-        return len(self.context.graph.tokens("MP", self.resolve_topic_name(topic_name)))
-
-    def count_subscribers(self, topic_name: str) -> int:
-        """Subscriptions on ``topic_name`` anywhere in the graph."""
-        return len(self.context.graph.tokens("MS", self.resolve_topic_name(topic_name)))
-
-    def get_node_names(self) -> list[str]:
-        """Names of the nodes in the graph."""
-        return sorted({t.node_name for t in self.context.graph.tokens("NN")})
-
-    def get_node_names_and_namespaces(self) -> list[tuple[str, str]]:
-        """(name, namespace) of the nodes in the graph."""
-        return sorted({(t.node_name, t.namespace) for t in self.context.graph.tokens("NN")})
-
-    def get_topic_names_and_types(self) -> list[tuple[str, list[str]]]:
-        """Every topic with its types."""
-        topics: dict[str, set[str]] = {}
-        for kind in ("MP", "MS"):
-            for t in self.context.graph.tokens(kind):
-                topics.setdefault(t.topic, set()).add(t.type_name)
-        return sorted((name, sorted(types)) for name, types in topics.items())
-
     # the node interface (what its entities use; see node_interface.py) -------------------
     @property
     def zid(self) -> str:
@@ -309,6 +293,10 @@ class Node(ParameterMethods):
         """``entity`` was destroyed: the node no longer closes it at shutdown."""
         if entity in self._entities:
             self._entities.remove(entity)
+
+    def _own(self, entity: _E) -> _E:
+        self._entities.append(entity)
+        return entity
 
     # executor plumbing (what executors and the context use) --------------------------------
     @property

@@ -2,12 +2,14 @@
 
 from __future__ import annotations
 
+import functools
 from collections.abc import Callable
 from typing import Any, Protocol
 
 from launchkit.ros.msgs import get_message, get_service
 from launchkit.ros.node_params import SetParametersResult
 from launchkit.ros.params import Parameter, ParameterType
+from launchkit.ros.qos import qos_profile_parameters
 
 
 class ParameterNode(Protocol):
@@ -29,31 +31,29 @@ class ParameterNode(Protocol):
 
 
 class ParameterService:
-    """Serves a node's parameters the way rclpy does (for ``launchkit param ...``)."""
+    """Serves a node's parameters the way rclpy does (for ``launchkit param ...``), with
+    rclpy's ``qos_profile_parameters`` (depth 1000)."""
 
     def __init__(self, node: ParameterNode) -> None:
         self.node = node
         prefix = "~/"
-        node.create_service(
+        serve = functools.partial(node.create_service, qos_profile=qos_profile_parameters)
+        serve(
             get_service("rcl_interfaces/srv/ListParameters"), prefix + "list_parameters", self._list
         )
-        node.create_service(
-            get_service("rcl_interfaces/srv/GetParameters"), prefix + "get_parameters", self._get
-        )
-        node.create_service(
+        serve(get_service("rcl_interfaces/srv/GetParameters"), prefix + "get_parameters", self._get)
+        serve(
             get_service("rcl_interfaces/srv/GetParameterTypes"),
             prefix + "get_parameter_types",
             self._types,
         )
-        node.create_service(
-            get_service("rcl_interfaces/srv/SetParameters"), prefix + "set_parameters", self._set
-        )
-        node.create_service(
+        serve(get_service("rcl_interfaces/srv/SetParameters"), prefix + "set_parameters", self._set)
+        serve(
             get_service("rcl_interfaces/srv/SetParametersAtomically"),
             prefix + "set_parameters_atomically",
             self._set_atomically,
         )
-        node.create_service(
+        serve(
             get_service("rcl_interfaces/srv/DescribeParameters"),
             prefix + "describe_parameters",
             self._describe,

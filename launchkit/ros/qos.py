@@ -16,6 +16,8 @@ class ReliabilityPolicy(enum.IntEnum):
     SYSTEM_DEFAULT = 0
     RELIABLE = 1
     BEST_EFFORT = 2
+    UNKNOWN = 3
+    BEST_AVAILABLE = 4
 
 
 class DurabilityPolicy(enum.IntEnum):
@@ -24,6 +26,8 @@ class DurabilityPolicy(enum.IntEnum):
     SYSTEM_DEFAULT = 0
     TRANSIENT_LOCAL = 1
     VOLATILE = 2
+    UNKNOWN = 3
+    BEST_AVAILABLE = 4
 
 
 class HistoryPolicy(enum.IntEnum):
@@ -32,6 +36,7 @@ class HistoryPolicy(enum.IntEnum):
     SYSTEM_DEFAULT = 0
     KEEP_LAST = 1
     KEEP_ALL = 2
+    UNKNOWN = 3
 
 
 class QoSError(UserError):
@@ -63,28 +68,54 @@ class QoSProfile:
         return self.depth or ZENOH_DEFAULT_DEPTH
 
     def to_keyexpr(self) -> str:
-        """rmw_zenoh's QoS string ``R:D:H,depth:DL:LS:LV`` (defaults left empty)."""
+        """rmw_zenoh's QoS string ``R:D:H,depth:DLs,DLns:LSs,LSns:LV,LLs,LLns``.
+
+        As rmw_zenoh 0.2.x writes it (``liveliness_utils.cpp:qos_to_keyexpr`` after
+        ``qos.cpp:QoS::best_available_qos``): depth 0 becomes 42, and every field equal to
+        rmw_zenoh's default (reliable, volatile, keep last, depth 42, infinite durations,
+        automatic liveliness) is left empty.
+        """
         rel = "" if self.reliability == ReliabilityPolicy.RELIABLE else str(int(self.reliability))
         dur = "" if self.durability == DurabilityPolicy.VOLATILE else str(int(self.durability))
         hist = "" if self.history == HistoryPolicy.KEEP_LAST else str(int(self.history))
-        depth = "" if self.depth == ZENOH_DEFAULT_DEPTH else str(self.depth)
+        depth = "" if self.effective_depth == ZENOH_DEFAULT_DEPTH else str(self.depth)
         return f"{rel}:{dur}:{hist},{depth}:,:,:,,"
 
     @classmethod
     def from_keyexpr(cls, text: str) -> QoSProfile:
-        """Parse rmw_zenoh's QoS string (empty fields are rmw_zenoh's defaults)."""
-        try:
-            head, depth_part = text.split(",", 2)[:2]
-            rel, dur, hist = head.split(":")
-            depth_text = depth_part.split(":")[0]
-            return cls(
-                depth=int(depth_text) if depth_text else ZENOH_DEFAULT_DEPTH,
-                reliability=ReliabilityPolicy(int(rel)) if rel else ReliabilityPolicy.RELIABLE,
-                durability=DurabilityPolicy(int(dur)) if dur else DurabilityPolicy.VOLATILE,
-                history=HistoryPolicy(int(hist)) if hist else HistoryPolicy.KEEP_LAST,
-            )
-        except ValueError:
-            raise QoSError(f"invalid QoS string {text!r}") from None
+        """Parse rmw_zenoh's QoS string (empty fields are rmw_zenoh's defaults).
+
+        Accepts exactly what ``liveliness_utils.cpp:keyexpr_to_qos`` accepts: six ``:`` parts,
+        the history, deadline and lifespan parts with two ``,`` fields, liveliness with three,
+        known enum numbers and unsigned decimal numbers. Deadline, lifespan and liveliness are
+        checked but not kept.
+        """
+        parts = text.split(":")
+        fields = [p.split(",") for p in parts[2:6]]
+        if len(parts) < 6 or any(len(f) < n for f, n in zip(fields, (2, 2, 2, 3), strict=True)):
+            raise QoSError(f"invalid QoS string {text!r}")
+        history, deadline, lifespan, liveliness = fields
+        numbers = [history[1], *deadline[:2], *lifespan[:2], *liveliness[1:3]]
+        if any(n and not (n.isascii() and n.isdigit() and int(n) < 2**64) for n in numbers):
+            raise QoSError(f"invalid QoS string {text!r}")
+        enums = ((parts[0], 6), (parts[1], 6), (history[0], 5))
+        if any(e not in _ENUM_NUMBERS[:n] for e, n in enums) or liveliness[0] not in _LIVELINESS:
+            raise QoSError(f"invalid QoS string {text!r}")
+        return cls(
+            depth=int(history[1]) if history[1] else ZENOH_DEFAULT_DEPTH,
+            reliability=ReliabilityPolicy(int(parts[0])) if parts[0] else _RELIABLE,
+            durability=DurabilityPolicy(int(parts[1])) if parts[1] else _VOLATILE,
+            history=HistoryPolicy(int(history[0])) if history[0] else _KEEP_LAST,
+        )
+
+
+# the enum numbers rmw_zenoh's str_to_qos_* maps accept ("" is the default); its liveliness
+# map has no MANUAL_BY_NODE (2)
+_ENUM_NUMBERS = ("", "0", "1", "2", "3", "4")
+_LIVELINESS = ("", "0", "1", "3", "4", "5")
+_RELIABLE = ReliabilityPolicy.RELIABLE
+_VOLATILE = DurabilityPolicy.VOLATILE
+_KEEP_LAST = HistoryPolicy.KEEP_LAST
 
 
 def as_profile(qos: QoSProfile | int) -> QoSProfile:
@@ -94,21 +125,6 @@ def as_profile(qos: QoSProfile | int) -> QoSProfile:
     if isinstance(qos, bool) or not isinstance(qos, int):
         raise QoSError(f"invalid QoS {qos!r}", expected="a QoSProfile or an int depth")
     return QoSProfile(depth=qos)
-
-
-def incompatibility(publisher: QoSProfile, subscription: QoSProfile) -> str | None:
-    """Why a publisher cannot feed a subscription under ROS's rules, or None if it can."""
-    if (
-        publisher.reliability == ReliabilityPolicy.BEST_EFFORT
-        and subscription.reliability == ReliabilityPolicy.RELIABLE
-    ):
-        return "RELIABILITY (best-effort publisher, reliable subscription)"
-    if (
-        publisher.durability == DurabilityPolicy.VOLATILE
-        and subscription.durability == DurabilityPolicy.TRANSIENT_LOCAL
-    ):
-        return "DURABILITY (volatile publisher, transient-local subscription)"
-    return None
 
 
 qos_profile_system_default = QoSProfile()

@@ -4,15 +4,17 @@ from __future__ import annotations
 
 import threading
 import time
+from collections import deque
 from collections.abc import Callable
 from typing import TYPE_CHECKING, Any
 
 import zenoh
 
 from launchkit.ros.keyexpr import decode_attachment, encode_attachment, entity_token, gid_of
+from launchkit.ros.logging import get_logger
 from launchkit.ros.msgs import message_type_name, serialize, type_hash
 from launchkit.ros.msgs._api import deserialize
-from launchkit.ros.qos import QoSProfile, qos_profile_services_default
+from launchkit.ros.qos import HistoryPolicy, QoSProfile
 from launchkit.ros.task import Future
 
 if TYPE_CHECKING:
@@ -26,14 +28,14 @@ class ServiceCallError(RuntimeError):
 class _ServiceEntity:
     KIND = ""
 
-    def __init__(self, node: NodeInterface, srv_type: Any, name: str) -> None:
+    def __init__(self, node: NodeInterface, srv_type: Any, name: str, qos: QoSProfile) -> None:
         self.node = node
         self.srv_type = srv_type
         self.type_name = message_type_name(srv_type)
         self.srv_name = node.resolve_service_name(name)
         self.type_hash = type_hash(self.type_name)
         self.key = node.topic_key(self.srv_name, self.type_name, self.type_hash)
-        qos: QoSProfile = qos_profile_services_default
+        self.qos_profile = qos
         self.token_key = entity_token(
             node.context.domain_id,
             node.zid,
@@ -49,10 +51,14 @@ class _ServiceEntity:
             qos,
         )
         self.gid = gid_of(self.token_key)
-        self._token: Any = node.context.session.liveliness().declare_token(self.token_key)
+        self._token: Any = None
+
+    def _announce(self) -> None:
+        # after the queryable: a client that sees the token must find the server behind it
+        self._token = self.node.context.session.liveliness().declare_token(self.token_key)
 
     def _undeclare(self, entity: Any) -> None:
-        for item in (entity, self._token):
+        for item in (self._token, entity):
             try:
                 item.undeclare()
             except Exception:  # the session may be closed already
@@ -61,39 +67,85 @@ class _ServiceEntity:
 
 
 class Service(_ServiceEntity):
-    """Answers requests: ``callback(request, response) -> response`` in the spinning thread."""
+    """Answers requests: ``callback(request, response) -> response`` in the spinning thread.
+
+    With ``raw=True`` (a launchkit extension, for bridges) the callback gets the request's CDR
+    bytes and returns the response's, or a :class:`Future` that completes with them later.
+    As in rmw_zenoh, at most ``depth`` requests wait for the callback under KEEP_LAST; a new one
+    beyond that discards the oldest.
+    """
 
     KIND = "SS"
 
     def __init__(
-        self, node: NodeInterface, srv_type: Any, name: str, callback: Callable[[Any, Any], Any]
+        self,
+        node: NodeInterface,
+        srv_type: Any,
+        name: str,
+        callback: Callable[..., Any],
+        qos: QoSProfile,
+        raw: bool = False,
     ) -> None:
-        super().__init__(node, srv_type, name)
+        super().__init__(node, srv_type, name, qos)
         self.callback = callback
+        self.raw = raw
+        self._pending: deque[tuple[zenoh.Query, bytes, bytes | None]] = deque()
+        self._pending_lock = threading.Lock()
         self._queryable = node.context.session.declare_queryable(
             self.key, self._on_query, complete=True
         )
+        self._announce()
 
     def _on_query(self, query: zenoh.Query) -> None:
         payload = query.payload
         attachment = query.attachment
-        self.node.post(
-            (
-                self._handle,
-                (
-                    query,
-                    b"" if payload is None else payload.to_bytes(),
-                    None if attachment is None else attachment.to_bytes(),
-                ),
-            )
+        item = (
+            query,
+            b"" if payload is None else payload.to_bytes(),
+            None if attachment is None else attachment.to_bytes(),
         )
+        qos = self.qos_profile
+        with self._pending_lock:
+            if qos.history != HistoryPolicy.KEEP_ALL and len(self._pending) >= qos.effective_depth:
+                oldest = self._pending.popleft()[0]
+                get_logger("launchkit.ros").error(
+                    f"Query queue depth of {qos.effective_depth} reached, discarding oldest "
+                    f"Query for service '{self.srv_name}'"
+                )
+                oldest.drop()  # type: ignore[no-untyped-call]
+            self._pending.append(item)
+        self.node.post((self._handle_next, ()))
 
-    def _handle(self, query: zenoh.Query, payload: bytes, attachment: bytes | None) -> None:
+    def _handle_next(self) -> None:
+        with self._pending_lock:
+            if not self._pending:
+                return  # discarded by the queue depth
+            query, payload, attachment = self._pending.popleft()
+        request_info = decode_attachment(attachment)
+        sequence = request_info.sequence if request_info else 0
+        gid = request_info.gid if request_info else self.gid
+
+        def reply(data: bytes) -> None:
+            attachment = encode_attachment(sequence, time.time_ns(), gid)
+            query.reply(self.key, data, attachment=attachment)
+            query.drop()  # type: ignore[no-untyped-call]
+
+        def fail(message: str) -> None:
+            query.reply_err(message.encode())
+            query.drop()  # type: ignore[no-untyped-call]
+
+        if self.raw:
+            self._answer_raw(payload, reply, fail)
+        else:
+            self._answer(payload, reply, fail)
+
+    def _answer(
+        self, payload: bytes, reply: Callable[[bytes], None], fail: Callable[[str], None]
+    ) -> None:
         try:
             request = deserialize(payload, self.type_name + "_Request")
         except Exception as exc:
-            query.reply_err(f"invalid {self.type_name} request: {exc}".encode())
-            query.drop()  # type: ignore[no-untyped-call]
+            fail(f"invalid {self.type_name} request: {exc}")
             return
         try:
             response = self.callback(request, self.srv_type.Response())
@@ -104,18 +156,38 @@ class Service(_ServiceEntity):
                 )
             data = serialize(response, self.type_name + "_Response")
         except Exception as exc:
-            query.reply_err(f"service '{self.srv_name}' failed: {exc}".encode())
-            query.drop()  # type: ignore[no-untyped-call]
+            fail(f"service '{self.srv_name}' failed: {exc}")
             raise
-        request_info = decode_attachment(attachment)
-        sequence = request_info.sequence if request_info else 0
-        gid = request_info.gid if request_info else self.gid
-        query.reply(self.key, data, attachment=encode_attachment(sequence, time.time_ns(), gid))
-        query.drop()  # type: ignore[no-untyped-call]
+        reply(data)
+
+    def _answer_raw(
+        self, payload: bytes, reply: Callable[[bytes], None], fail: Callable[[str], None]
+    ) -> None:
+        try:
+            result = self.callback(payload)
+        except Exception as exc:
+            fail(f"service '{self.srv_name}' failed: {exc}")
+            raise
+        if not isinstance(result, Future):
+            reply(bytes(result))
+            return
+
+        def done(future: Future) -> None:
+            error = future.exception()
+            if error is not None or future.cancelled():
+                fail(f"service '{self.srv_name}' failed: {error or 'cancelled'}")
+            else:
+                reply(bytes(future.result()))
+
+        result.add_done_callback(done)
 
     def destroy(self) -> None:
         """Stop serving."""
         self._undeclare(self._queryable)
+        with self._pending_lock:
+            pending, self._pending = list(self._pending), deque()
+        for query, _, _ in pending:
+            query.drop()  # type: ignore[no-untyped-call]
 
 
 class Client(_ServiceEntity):
@@ -123,10 +195,14 @@ class Client(_ServiceEntity):
 
     KIND = "SC"
 
-    def __init__(self, node: NodeInterface, srv_type: Any, name: str) -> None:
-        super().__init__(node, srv_type, name)
+    def __init__(
+        self, node: NodeInterface, srv_type: Any, name: str, qos: QoSProfile, raw: bool = False
+    ) -> None:
+        super().__init__(node, srv_type, name, qos)
+        self.raw = raw
         self._sequence = 0
         self._lock = threading.Lock()
+        self._announce()
 
     def service_is_ready(self) -> bool:
         """Whether a server for this service exists now."""
@@ -140,12 +216,21 @@ class Client(_ServiceEntity):
         return self.node.context.graph.wait_for(self.service_is_ready, timeout_sec)
 
     def call_async(self, request: Any, timeout_sec: float = 60.0) -> Future:
-        """Send ``request``; the future completes with the response (or an exception)."""
-        if getattr(request, "__msgtype__", None) != self.type_name + "_Request":
+        """Send ``request``; the future completes with the response (or an exception).
+
+        A raw client (``raw=True``) sends CDR bytes and completes with the response's bytes.
+        """
+        if self.raw:
+            if not isinstance(request, (bytes, bytearray, memoryview)):
+                raise TypeError(f"raw client of '{self.srv_name}' expects bytes")
+            payload = bytes(request)
+        elif getattr(request, "__msgtype__", None) != self.type_name + "_Request":
             raise TypeError(
                 f"client of '{self.srv_name}' expects {self.type_name}_Request, "
                 f"got {type(request).__name__}"
             )
+        else:
+            payload = serialize(request, self.type_name + "_Request")
         future = Future(lambda item: self.node.post(item))
         with self._lock:
             self._sequence += 1
@@ -155,7 +240,8 @@ class Client(_ServiceEntity):
         def on_reply(reply: zenoh.Reply) -> None:
             if reply.ok is not None:
                 try:
-                    future.set_result(deserialize(reply.ok.payload.to_bytes(), response_type))
+                    data = reply.ok.payload.to_bytes()
+                    future.set_result(data if self.raw else deserialize(data, response_type))
                 except Exception as exc:
                     future.set_exception(ServiceCallError(f"invalid response: {exc}"))
             elif reply.err is not None:
@@ -173,7 +259,7 @@ class Client(_ServiceEntity):
             self.key,
             zenoh.handlers.Callback(on_reply, on_done),
             target=zenoh.QueryTarget.ALL_COMPLETE,
-            payload=serialize(request, self.type_name + "_Request"),
+            payload=payload,
             attachment=attachment,
             timeout=timeout_sec,
         )

@@ -4,6 +4,12 @@ Zenoh's defaults listen on every interface and scout by multicast; every session
 opens gets this configuration instead. Peers connect to the router named by ``LAUNCHKIT_ROUTER``
 (default ``tcp/127.0.0.1:7447``), listen on loopback only, and learn each other by gossip so
 data then flows peer to peer, as in rmw_zenoh.
+
+rmw_zenoh's configuration variables work the same way here (rmw_zenoh 0.2.x,
+``src/detail/zenoh_config.cpp:_get_z_config``): ``ZENOH_SESSION_CONFIG_URI`` /
+``ZENOH_ROUTER_CONFIG_URI`` name a JSON5 file that replaces launchkit's configuration, and
+``ZENOH_CONFIG_OVERRIDE='key=json5;key=json5'`` then changes single keys of whichever
+configuration was chosen.
 """
 
 from __future__ import annotations
@@ -18,13 +24,21 @@ import zenoh
 
 from launchkit.envvars import ROUTER
 from launchkit.errors import UserError
+from launchkit.ros.logging import get_logger
 
+SESSION_CONFIG_ENV = "ZENOH_SESSION_CONFIG_URI"
+ROUTER_CONFIG_ENV = "ZENOH_ROUTER_CONFIG_URI"
+CONFIG_OVERRIDE_ENV = "ZENOH_CONFIG_OVERRIDE"
 DEFAULT_ROUTER = "tcp/127.0.0.1:7447"
 LOOPBACK_LISTEN = "tcp/127.0.0.1:0"
 
 
 class EndpointError(UserError):
     """A malformed router endpoint."""
+
+
+class ZenohConfigError(UserError):
+    """A Zenoh configuration file named by ``ZENOH_*_CONFIG_URI`` that cannot be used."""
 
 
 def router_endpoint(endpoint: str | None = None) -> str:
@@ -73,24 +87,72 @@ def _base_config(mode: str) -> zenoh.Config:
 
 
 def peer_config(endpoint: str | None = None) -> zenoh.Config:
-    """A node's configuration: peer, connect to the router, listen on loopback only."""
-    uri = os.environ.get("ZENOH_SESSION_CONFIG_URI")
-    if uri:
-        return cast(zenoh.Config, zenoh.Config.from_file(uri))
-    config = _base_config("peer")
-    config.insert_json5("connect/endpoints", json.dumps([router_endpoint(endpoint)]))
-    config.insert_json5("listen/endpoints", json.dumps([LOOPBACK_LISTEN]))
-    return config
+    """A node's configuration: peer, connect to the router, listen on loopback only.
+
+    ``$ZENOH_SESSION_CONFIG_URI`` replaces it with a file, and ``$ZENOH_CONFIG_OVERRIDE``
+    changes keys of either, as rmw_zenoh does.
+    """
+    config = _config_file(SESSION_CONFIG_ENV)
+    if config is None:
+        config = _base_config("peer")
+        config.insert_json5("connect/endpoints", json.dumps([router_endpoint(endpoint)]))
+        config.insert_json5("listen/endpoints", json.dumps([LOOPBACK_LISTEN]))
+    return apply_overrides(config)
 
 
 def router_config(endpoint: str) -> zenoh.Config:
-    """The router's configuration: listen on ``endpoint`` only, no multicast scouting."""
-    uri = os.environ.get("ZENOH_ROUTER_CONFIG_URI")
-    if uri:
+    """The router's configuration: listen on ``endpoint`` only, no multicast scouting.
+
+    ``$ZENOH_ROUTER_CONFIG_URI`` replaces it with a file, and ``$ZENOH_CONFIG_OVERRIDE``
+    changes keys of either, as rmw_zenoh's router does.
+    """
+    config = _config_file(ROUTER_CONFIG_ENV)
+    if config is None:
+        config = _base_config("router")
+        config.insert_json5("listen/endpoints", json.dumps([endpoint]))
+        config.insert_json5("connect/endpoints", "[]")
+    return apply_overrides(config)
+
+
+def _config_file(variable: str) -> zenoh.Config | None:
+    """The configuration in the file ``$variable`` names (unset or empty: None)."""
+    uri = os.environ.get(variable, "")
+    if not uri:
+        return None
+    try:
         return cast(zenoh.Config, zenoh.Config.from_file(uri))
-    config = _base_config("router")
-    config.insert_json5("listen/endpoints", json.dumps([endpoint]))
-    config.insert_json5("connect/endpoints", "[]")
+    except Exception as exc:  # zenoh raises a bare ZError
+        raise ZenohConfigError(
+            f"{variable}={uri}: not a usable Zenoh configuration file: {exc}",
+            expected="a readable JSON5 Zenoh configuration",
+        ) from None
+
+
+def parse_overrides(text: str) -> list[tuple[str, str]]:
+    """``key=value;key=value`` as rmw_zenoh splits it: on ``;``, then at the first ``=``.
+
+    A part without ``=`` or with nothing after it is skipped, as rmw_zenoh skips it.
+    """
+    pairs = []
+    for part in text.split(";"):
+        key, sep, value = part.partition("=")
+        value = value.split("\n", 1)[0]
+        if sep and value:
+            pairs.append((key, value))
+    return pairs
+
+
+def apply_overrides(config: zenoh.Config) -> zenoh.Config:
+    """Insert every ``$ZENOH_CONFIG_OVERRIDE`` pair into ``config``; bad pairs are ignored with a
+    warning naming them (rmw_zenoh's behaviour)."""
+    for key, value in parse_overrides(os.environ.get(CONFIG_OVERRIDE_ENV, "")):
+        try:
+            config.insert_json5(key, value)
+        except Exception:  # zenoh raises a bare ZError
+            get_logger("launchkit.ros").warn(
+                f"{CONFIG_OVERRIDE_ENV}: ignored the invalid configuration key-value pair "
+                f"({key}, {value})"
+            )
     return config
 
 

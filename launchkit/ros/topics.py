@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import inspect
 import threading
 import time
 from collections.abc import Callable
@@ -10,16 +11,10 @@ from typing import TYPE_CHECKING, Any
 import zenoh
 from zenoh import ext
 
-from launchkit.ros.keyexpr import Token, decode_attachment, encode_attachment, entity_token, gid_of
+from launchkit.ros.keyexpr import decode_attachment, encode_attachment, entity_token, gid_of
 from launchkit.ros.msgs import message_type_name, serialize, type_hash
 from launchkit.ros.msgs._api import deserialize
-from launchkit.ros.qos import (
-    DurabilityPolicy,
-    HistoryPolicy,
-    QoSProfile,
-    ReliabilityPolicy,
-    incompatibility,
-)
+from launchkit.ros.qos import DurabilityPolicy, HistoryPolicy, QoSProfile, ReliabilityPolicy
 
 if TYPE_CHECKING:
     from launchkit.ros.node_interface import NodeInterface
@@ -55,30 +50,14 @@ class _Entity:
         )
         self.gid = gid_of(self.token_key)
         self._token: Any = None
-        self._warned: set[str] = set()
 
     def _announce(self) -> None:
         self._token = self.node.context.session.liveliness().declare_token(self.token_key)
-        self.node.context.graph.add_listener(self._on_graph)
-
-    def _on_graph(self, token: Token, appeared: bool) -> None:
-        pass
-
-    def _warn_incompatible(self, peer: Token, reason: str) -> None:
-        if peer.key in self._warned:
-            return
-        self._warned.add(peer.key)
-        role = "publisher" if self.KIND == "MP" else "subscription"
-        other = "subscription" if self.KIND == "MP" else "publisher"
-        self.node.get_logger().warn(
-            f"New {other} discovered on topic '{self.topic_name}', requesting incompatible QoS. "
-            f"No messages will be sent to it. Last incompatible policy: {reason} "
-            f"(this {role} is on node '{self.node.get_fully_qualified_name()}', the {other} on "
-            f"'{peer.node_fqn}')"
-        )
+        # follow the graph from the first publisher or subscription on, so that graph queries
+        # soon after (get_node_names, get_subscription_count) find it already filled
+        _ = self.node.context.graph
 
     def _undeclare(self, *entities: Any) -> None:
-        self.node.context.graph.remove_listener(self._on_graph)
         for entity in (*entities, self._token):
             if entity is None:
                 continue
@@ -130,12 +109,6 @@ class Publisher(_Entity):
                 else zenoh.Reliability.BEST_EFFORT,
             )
         self._announce()
-
-    def _on_graph(self, token: Token, appeared: bool) -> None:
-        if appeared and token.kind == "MS" and token.topic == self.topic_name and token.qos:
-            reason = incompatibility(self.qos_profile, token.qos)
-            if reason:
-                self._warn_incompatible(token, reason)
 
     @property
     def topic(self) -> str:
@@ -191,14 +164,14 @@ class Subscription(_Entity):
         node: NodeInterface,
         msg_type: Any,
         topic: str,
-        callback: Callable[[Any], Any],
+        callback: Callable[..., Any],
         qos: QoSProfile,
         raw: bool = False,
     ) -> None:
         super().__init__(node, msg_type, topic, qos)
         self.callback = callback
         self.raw = raw
-        self._blocked_gids: set[bytes] = set()
+        self._with_info = _takes_message_info(callback)
         session = node.context.session
         reliable = qos.reliability == ReliabilityPolicy.RELIABLE
         if qos.durability == DurabilityPolicy.TRANSIENT_LOCAL:
@@ -223,48 +196,73 @@ class Subscription(_Entity):
         """The resolved topic name."""
         return self.topic_name
 
-    def _on_graph(self, token: Token, appeared: bool) -> None:
-        if token.kind != "MP" or token.topic != self.topic_name or token.qos is None:
-            return
-        reason = incompatibility(token.qos, self.qos_profile)
-        if reason is None:
-            return
-        if appeared:
-            self._blocked_gids.add(token.gid)
-            self._warn_incompatible(token, reason)
-        else:
-            self._blocked_gids.discard(token.gid)
-
     def _on_sample(self, sample: zenoh.Sample) -> None:
         # zenoh's thread: copy out and hand over to the spinning thread
         attachment = sample.attachment
         self.node.post(
             (
                 self._deliver,
-                (sample.payload.to_bytes(), None if attachment is None else attachment.to_bytes()),
+                (
+                    sample.payload.to_bytes(),
+                    None if attachment is None else attachment.to_bytes(),
+                    time.time_ns(),
+                ),
             )
         )
 
-    def _deliver(self, payload: bytes, attachment: bytes | None) -> None:
-        if self._blocked_gids:
-            decoded = decode_attachment(attachment)
-            if decoded is not None and decoded.gid in self._blocked_gids:
-                return
+    def _deliver(self, payload: bytes, attachment: bytes | None, received_ns: int) -> None:
+        # as rmw_zenoh, every publisher feeds every subscription whatever their QoS (its graph
+        # cache does not enforce DDS's compatibility rules)
         if self.raw:
-            self.callback(payload)
-            return
-        try:
-            msg = deserialize(payload, self.type_name)
-        except Exception as exc:
-            self.node.get_logger().error(
-                f"dropped a message on '{self.topic_name}' that is not a valid "
-                f"{self.type_name}: {exc}",
-                throttle_duration_sec=5.0,
-            )
-            return
-        self.callback(msg)
+            msg: Any = payload
+        else:
+            try:
+                msg = deserialize(payload, self.type_name)
+            except Exception as exc:
+                self.node.get_logger().error(
+                    f"dropped a message on '{self.topic_name}' that is not a valid "
+                    f"{self.type_name}: {exc}",
+                    throttle_duration_sec=5.0,
+                )
+                return
+        if self._with_info:
+            self.callback(msg, message_info(attachment, received_ns))
+        else:
+            self.callback(msg)
 
     def destroy(self) -> None:
         """Undeclare the subscriber and its token."""
         self._undeclare(self._sub)
         self.node.forget(self)
+
+
+def message_info(attachment: bytes | None, received_ns: int) -> dict[str, Any]:
+    """rclpy's message info for a sample, plus ``publisher_gid`` (the 16 bytes of rmw's
+    ``rmw_message_info_t.publisher_gid``, which rclpy leaves out; empty when unknown)."""
+    decoded = decode_attachment(attachment)
+    return {
+        "source_timestamp": decoded.timestamp_ns if decoded else 0,
+        "received_timestamp": received_ns,
+        "publication_sequence_number": decoded.sequence if decoded else None,
+        "reception_sequence_number": None,
+        "publisher_gid": decoded.gid if decoded else b"",
+    }
+
+
+def _takes_message_info(callback: Callable[..., Any]) -> bool:
+    """Whether ``callback`` wants ``(msg, message_info)`` rather than ``(msg)`` (rclpy's rule)."""
+    try:
+        inspect.signature(callback).bind(object())
+        return False
+    except TypeError:
+        pass
+    except ValueError:  # no signature (a builtin): assume one argument
+        return False
+    try:
+        inspect.signature(callback).bind(object(), object())
+        return True
+    except TypeError:
+        raise TypeError(
+            "a subscription callback takes one argument (the message) or two (the message "
+            "and its message info)"
+        ) from None

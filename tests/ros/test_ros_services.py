@@ -149,3 +149,106 @@ def test_sim_time_follows_clock(contexts: Callable[[], Context]) -> None:
 
     spin_until(node, advance, 10, "two sim-time timer ticks")
     assert ticks[0] >= 1_000_000_000 and ticks[1] - ticks[0] >= 1_000_000_000
+
+
+def test_raw_service_and_client_pass_bytes_and_may_answer_later(
+    contexts: Callable[[], Context],
+) -> None:
+    from launchkit.ros.msgs import deserialize, serialize
+    from launchkit.ros.task import Future
+
+    server = Node("raw_server", context=contexts())
+    later: list[tuple[bytes, Future]] = []
+
+    def answer_later(request: bytes) -> Future:
+        future = Future()
+        later.append((request, future))
+        return future
+
+    server.create_service(SetBool, "/deferred", answer_later, raw=True)
+    halt = _serve_in_thread(server)
+    try:
+        client = Node("raw_client", context=contexts()).create_client(
+            SetBool, "/deferred", raw=True
+        )
+        assert client.wait_for_service(timeout_sec=10)
+        request = serialize(SetBool.Request(data=True), "std_srvs/srv/SetBool_Request")
+        pending = client.call_async(request)
+        spin_until(client.node, lambda: bool(later), 10, "the raw request at the server")
+        assert later[0][0] == request and not pending.done()
+        response = SetBool.Response(success=True, message="answered later")
+        later[0][1].set_result(serialize(response, "std_srvs/srv/SetBool_Response"))
+        assert pending.wait(10), "the deferred answer never reached the client"
+        decoded = deserialize(pending.result(), "std_srvs/srv/SetBool_Response")
+        assert (decoded.success, decoded.message) == (True, "answered later")
+    finally:
+        halt()
+
+
+def test_keep_last_requests_beyond_the_depth_discard_the_oldest_as_rmw_zenoh(
+    contexts: Callable[[], Context], capsys: pytest.CaptureFixture[str]
+) -> None:
+    from launchkit.ros import QoSProfile
+
+    server = Node("slow_server", context=contexts())
+    server.create_service(
+        SetBool,
+        "/busy",
+        lambda q, r: SetBool.Response(success=q.data),
+        qos_profile=QoSProfile(depth=1),
+    )
+    client = Node("eager_client", context=contexts()).create_client(SetBool, "/busy")
+    assert client.wait_for_service(timeout_sec=10)
+    # the server does not spin yet: the second request discards the first
+    first = client.call_async(SetBool.Request(data=False), timeout_sec=30)
+    second = client.call_async(SetBool.Request(data=True), timeout_sec=30)
+    assert first.wait(10), "the first request was never discarded"
+    assert isinstance(first.exception(), ServiceCallError)
+    spin_until(server, second.done, 10, "the second request to be answered")
+    assert second.result().success is True
+    assert "Query queue depth of 1 reached" in capsys.readouterr().err
+
+
+def test_a_server_answers_as_soon_as_its_token_is_seen(
+    contexts: Callable[[], Context], router_endpoint: str
+) -> None:
+    # a client reacting to the SS token at once must find the queryable behind it (the token
+    # is declared after the queryable, on the same link to the router)
+    import queue
+
+    import zenoh
+
+    from launchkit.ros.keyexpr import LIVELINESS_PREFIX, parse_token
+    from launchkit.ros.session import close_session, open_session, peer_config
+
+    watcher = open_session(peer_config(router_endpoint))
+    answered: queue.Queue[tuple[str, int]] = queue.Queue()
+    request = SetBool.Request(data=True)
+    from launchkit.ros.msgs import serialize
+
+    payload = serialize(request, "std_srvs/srv/SetBool_Request")
+
+    def on_token(sample: zenoh.Sample) -> None:
+        token = parse_token(str(sample.key_expr))
+        if token is None or token.kind != "SS" or sample.kind != zenoh.SampleKind.PUT:
+            return
+        from launchkit.ros.keyexpr import topic_key
+
+        key = topic_key(token.domain, token.topic, token.type_name, token.type_hash)
+        replies = list(watcher.get(key, payload=payload, timeout=10.0))
+        answered.put((token.topic, len(replies)))
+
+    subscriber = watcher.liveliness().declare_subscriber(f"{LIVELINESS_PREFIX}/**", on_token)
+    try:
+        server = Node("eager_server", context=contexts(), start_parameter_services=False)
+        halt = _serve_in_thread(server)
+        try:
+            for i in range(10):
+                server.create_service(SetBool, f"/eager_{i}", lambda q, r: r)
+            results = dict(answered.get(timeout=30) for _ in range(10))
+        finally:
+            halt()
+        assert results == {f"/eager_{i}": 1 for i in range(10)}
+    finally:
+        subscriber.undeclare()
+        close_session(watcher)

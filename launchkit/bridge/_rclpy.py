@@ -1,0 +1,108 @@
+"""The real rclpy, imported on demand: clear errors where it is missing, type lookup, QoS.
+
+rclpy comes from a ROS 2 Jazzy install (``source /opt/ros/jazzy/setup.bash``) or from the
+third-party PyPI wheels the ``ros2`` extra installs (CPython 3.11 on Linux x86_64 only).
+"""
+
+from __future__ import annotations
+
+import importlib
+import platform
+import sys
+from types import ModuleType
+from typing import Any
+
+from launchkit.errors import UserError
+from launchkit.ros.qos import DurabilityPolicy, HistoryPolicy, QoSProfile, ReliabilityPolicy
+
+EXTRA = "launchkit[ros2]"
+WHEEL_PLATFORM = "CPython 3.11 on Linux x86_64"
+
+
+class RclpyUnavailableError(UserError):
+    """The real rclpy cannot be imported here."""
+
+
+def wheels_supported() -> bool:
+    """Whether the PyPI ros-jazzy wheels exist for this interpreter and machine."""
+    return (
+        sys.implementation.name == "cpython"
+        and sys.version_info[:2] == (3, 11)
+        and sys.platform == "linux"
+        and platform.machine() == "x86_64"
+    )
+
+
+def import_rclpy() -> ModuleType:
+    """``rclpy``, or a one-line error saying how to get it on this machine."""
+    try:
+        import rclpy
+        import rclpy.executors
+        import rclpy.serialization  # the bridge needs both: fail here, not later
+    except ImportError as exc:
+        here = (
+            f"{platform.python_implementation()} {platform.python_version()} on "
+            f"{platform.system()} {platform.machine()}"
+        )
+        if wheels_supported():
+            how = f"pip install '{EXTRA}'"
+        else:
+            how = (
+                f"source a ROS 2 Jazzy install first (the PyPI wheels of '{EXTRA}' exist only "
+                f"for {WHEEL_PLATFORM}; this is {here})"
+            )
+        raise RclpyUnavailableError(
+            f"the ROS 2 bridge needs the real rclpy, which cannot be imported ({exc})",
+            expected=f"rclpy importable: {how}",
+        ) from None
+    return rclpy
+
+
+def message_class(type_name: str) -> Any | None:
+    """rclpy's class for ``pkg/msg/Name`` or ``pkg/srv/Name``; None when not installed."""
+    package, kind, name = type_name.split("/")
+    try:
+        module = importlib.import_module(f"{package}.{kind}")
+    except ImportError:
+        return None
+    return getattr(module, name, None)
+
+
+def to_rclpy_qos(qos: QoSProfile) -> Any:
+    """The rclpy profile for a launchkit one (KEEP_LAST of the effective depth, or KEEP_ALL)."""
+    from rclpy.qos import DurabilityPolicy as Durability
+    from rclpy.qos import HistoryPolicy as History
+    from rclpy.qos import QoSProfile as RclpyQoS
+    from rclpy.qos import ReliabilityPolicy as Reliability
+
+    keep_all = qos.history == HistoryPolicy.KEEP_ALL
+    return RclpyQoS(  # type: ignore[no-untyped-call]
+        history=History.KEEP_ALL if keep_all else History.KEEP_LAST,
+        depth=qos.effective_depth,
+        reliability=Reliability.RELIABLE
+        if qos.reliability == ReliabilityPolicy.RELIABLE
+        else Reliability.BEST_EFFORT,
+        durability=Durability.TRANSIENT_LOCAL
+        if qos.durability == DurabilityPolicy.TRANSIENT_LOCAL
+        else Durability.VOLATILE,
+    )
+
+
+def from_rclpy_qos(qos: Any, default_depth: int) -> QoSProfile:
+    """A launchkit profile for what DDS discovery reports (Fast DDS reports no depth)."""
+    from rclpy.qos import DurabilityPolicy as Durability
+    from rclpy.qos import HistoryPolicy as History
+    from rclpy.qos import ReliabilityPolicy as Reliability
+
+    return QoSProfile(
+        depth=int(qos.depth) or default_depth,
+        reliability=ReliabilityPolicy.BEST_EFFORT
+        if qos.reliability == Reliability.BEST_EFFORT
+        else ReliabilityPolicy.RELIABLE,
+        durability=DurabilityPolicy.TRANSIENT_LOCAL
+        if qos.durability == Durability.TRANSIENT_LOCAL
+        else DurabilityPolicy.VOLATILE,
+        history=HistoryPolicy.KEEP_ALL
+        if qos.history == History.KEEP_ALL
+        else HistoryPolicy.KEEP_LAST,
+    )
