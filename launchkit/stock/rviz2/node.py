@@ -30,17 +30,20 @@ from launchkit.stock.rviz2.server import ViewerServer
 
 def _param(node: ros.Node, name: str, default: Any, expected: str) -> Any:
     """A parameter's value (declared with ``default``), checked to have ``default``'s type."""
-    value = (
-        node.get_parameter(name).value
-        if node.has_parameter(name)
-        else node.declare_parameter(name, default).value
-    )
+    try:
+        value = (
+            node.get_parameter(name).value
+            if node.has_parameter(name)
+            else node.declare_parameter(name, default).value
+        )
+    except ros.InvalidParameterTypeException as error:
+        raise UserError(str(error), expected=expected) from None
     if isinstance(default, list):
         ok = isinstance(value, (list, tuple)) and all(isinstance(v, str) for v in value)
     else:
         ok = type(value) is type(default)
     if not ok:
-        raise UserError(f"rviz2: parameter {name} is {value!r}", expected=expected)
+        raise UserError(f"parameter {name!r} is {value!r}", expected=expected)
     return list(value) if isinstance(default, list) else value
 
 
@@ -93,7 +96,7 @@ def main(argv: list[str]) -> int:
             node, "allowed_origins", list(args.allow_origin), "a list of origins (strings)"
         )
         if not 0 <= port <= 65535:
-            raise UserError(f"rviz2: parameter port is {port}", expected="0 to 65535")
+            raise UserError(f"parameter 'port' is {port}", expected="0 to 65535")
         policy = AccessPolicy(address, origins)
         hub = Hub(link)
         logger = node.get_logger()
@@ -102,9 +105,9 @@ def main(argv: list[str]) -> int:
         )
         server.start()
         link.connect(hub, server)
-        for line in connect_lines(server, config):
-            print(line, flush=True)
         announce(f"viewer: {server.url}")
+        for line in connect_lines(server, config):  # after the announcement: tests rely on it
+            print(line, flush=True)
         if not policy.loopback_only:
             node.get_logger().warn(
                 f"serving on {address}: other machines can see and drive the robot"
