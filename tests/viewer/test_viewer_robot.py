@@ -109,6 +109,14 @@ def test_a_page_shows_and_drives_the_robot_and_the_camera_renders_only_for_it(
     assert CAMERA in client.channels
     description = deserialize(client.received["/robot_description"][0], "std_msgs/msg/String")
     assert "three_wheeled_robot" in description.data
+    frames = {
+        t.child_frame_id
+        for raw in client.received["/tf"]
+        for t in deserialize(raw, "tf2_msgs/msg/TFMessage").transforms
+    }
+    assert frames & {"base", "wheel_left_link", "wheel_right_link"}, frames
+    scan = deserialize(client.received["/scan"][0], "sensor_msgs/msg/LaserScan")
+    assert len(scan.ranges) == 360 and scan.header.frame_id == "lidar"
     # ... and with no page open nothing subscribes to the camera, which renders nothing
     assert subscribers(robot, CAMERA) == 0
     assert not [line for line in camera.output if "image subscribed: rendering" in line]
