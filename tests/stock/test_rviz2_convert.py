@@ -36,8 +36,30 @@ def test_an_image_is_a_binary_frame_with_its_pixels_unchanged() -> None:
         "encoding": "bgr8",
         "step": 12,
         "bigendian": False,
+        "scale": 1,
     }
     assert data == pixels.tobytes()
+
+
+def test_a_wide_image_is_thinned_for_the_page() -> None:
+    pixels = np.arange(800 * 600 * 3, dtype=np.uint32).astype(np.uint8).reshape(600, 800, 3)
+    header, data = _split(
+        _frame(
+            "sensor_msgs/msg/Image",
+            width=800,
+            height=600,
+            encoding="rgb8",
+            step=2400,
+            data=pixels.reshape(-1),
+        )
+    )
+    assert (header["width"], header["height"], header["step"], header["scale"]) == (
+        400,
+        300,
+        1200,
+        2,
+    )
+    assert data == pixels[::2, ::2].tobytes()
 
 
 def test_a_compressed_image_keeps_its_bytes_and_format() -> None:

@@ -4,7 +4,12 @@ The page gets only what it draws: a TF message is a list of ``{parent, child, t,
 its geometry and ranges (``null`` where a range is not finite), odometry a pose and a twist.
 Images travel as one binary WebSocket frame: a little-endian ``uint32`` length, that many bytes
 of JSON header (topic, width, height, encoding, step or format) and the pixels or the
-compressed bytes as they came. Every other type is sent as its fields (long arrays cut, as
+compressed bytes as they came. The page's image panel is a few hundred pixels wide, so raw
+images wider than :data:`MAX_PAGE_WIDTH` are sent with every n-th pixel of every n-th row
+(``"scale": n`` in the header): the seed's 800x800 camera goes as 400x400, a quarter of the
+bytes to send and to convert in the browser. Foxglove clients get every image whole.
+
+Every other type is sent as its fields (long arrays cut, as
 ``ros2 topic echo`` does) for the topic list's message view.
 """
 
@@ -22,6 +27,8 @@ from launchkit.ros.msgs import deserialize
 
 #: Longest array or string of a message shown whole in the topic list's message view.
 ECHO_TRUNCATE = 32
+#: Raw images wider than this are thinned for the page.
+MAX_PAGE_WIDTH = 640
 
 PageFrame = str | bytes
 
@@ -125,16 +132,28 @@ def _binary(header: dict[str, Any], payload: bytes, msg: Any) -> bytes:
 
 
 def _image(topic: str, msg: Any, payload: bytes) -> bytes:
+    width, height, step = int(msg.width), int(msg.height), int(msg.step)
     header = {
         "topic": topic,
         "frame": msg.header.frame_id,
         "stamp": _stamp(msg.header),
-        "width": int(msg.width),
-        "height": int(msg.height),
+        "width": width,
+        "height": height,
         "encoding": str(msg.encoding),
-        "step": int(msg.step),
+        "step": step,
         "bigendian": bool(msg.is_bigendian),
+        "scale": 1,
     }
+    factor = -(-width // MAX_PAGE_WIDTH)
+    whole_pixels = width > 0 and step % width == 0 and step * height == len(msg.data)
+    if factor > 1 and whole_pixels:
+        size = step // width  # bytes a pixel
+        pixels = np.asarray(msg.data, dtype=np.uint8).reshape(height, width, size)
+        thinned = np.ascontiguousarray(pixels[::factor, ::factor])
+        rows, columns = thinned.shape[:2]
+        header.update(width=columns, height=rows, step=columns * size, scale=factor)
+        head = json.dumps(header).encode()
+        return b"".join((struct.pack("<I", len(head)), head, thinned.tobytes()))
     return _binary(header, payload, msg)
 
 

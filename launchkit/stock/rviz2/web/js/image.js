@@ -108,6 +108,7 @@ export class ImagePanel {
 
   async onImage(header, bytes) {
     if (header.topic !== this.topic) return;
+    const started = performance.now();
     try {
       if (header.format !== undefined) {
         const type = header.format.includes("png") ? "image/png" : "image/jpeg";
@@ -126,6 +127,7 @@ export class ImagePanel {
       return;
     }
     const now = performance.now();
+    this.ctx.stats.imageDrawMs = Math.round((now - started) * 10) / 10;
     this.times.push(now);
     while (this.times.length && now - this.times[0] > 2000) this.times.shift();
     const fps = this.times.length > 1 ? ((this.times.length - 1) * 1000) / (now - this.times[0]) : 0;

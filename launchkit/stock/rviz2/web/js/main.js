@@ -233,6 +233,7 @@ window.__viewer = {
   sample: (points) => ctx.scene.sample(points),
   background: () => state.config?.background,
   wanted: () => [...ctx.conn.counts.keys()].sort(),
+  rates: () => ({ ...state.rates }), // as measured by the server, for the topics shown
   showImage: (topic) => { if (images.checkbox) images.checkbox.checked = Boolean(topic); images.show(topic); },
   setDisplay(name, on) {
     const display = state.displays.find((d) => d.spec.name === name);
