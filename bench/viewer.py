@@ -22,7 +22,6 @@ from __future__ import annotations
 import argparse
 import datetime
 import http.client
-import json
 import math
 import os
 import platform
@@ -244,7 +243,8 @@ def main() -> None:
     args = parser.parse_args()
     print(
         f"machine: {platform.node()} {platform.machine()} {os.cpu_count()} cores, "
-        f"Python {platform.python_version()}; {datetime.datetime.now():%Y-%m-%d %H:%M}"
+        f"Python {platform.python_version()}; {datetime.datetime.now():%Y-%m-%d %H:%M}; "
+        f"load average {os.getloadavg()[0]:.1f}"
     )
     print("page protocol, server side (CDR -> what the page gets), per message:")
     decode_costs()
@@ -300,9 +300,11 @@ def main() -> None:
             page.wait_for_function("window.__viewer.stats.imageFrames >= 5", timeout=60000)
             pause(2)
             window = page_window(page, args.seconds)
+            arriving = page.evaluate("window.__viewer.rates()['/camera1/image_raw']")
             print(
                 f"camera frames shown in the page: {window['camera_fps']:.1f} per s "
                 f"(page says {page.evaluate('window.__viewer.stats.imageFps')}; target >= 10); "
+                f"the camera delivered {arriving:.1f} per s to rviz2; "
                 f"page drew {window['fps']:.1f} frames per s"
             )
             launch_cpu, browser_cpu = cpu_split(launch.proc.pid, me, args.seconds, pause)
@@ -316,7 +318,7 @@ def main() -> None:
             "robot launch CPU, page closed again: "
             f"{cpu_cores(launch.proc.pid, args.seconds):.2f} cores"
         )
-        print(json.dumps({"viewer": launch.url}))
+        print(f"load average at the end: {os.getloadavg()[0]:.1f}")
     finally:
         if extra is not None:
             extra.close()
