@@ -12,7 +12,6 @@ import asyncio
 import http.client
 import json
 import os
-import queue
 import signal
 import subprocess
 import sys
@@ -41,13 +40,31 @@ DEADLINE = 20.0
 
 
 class Rviz2:
-    """The rviz2 process of the module and where it serves."""
+    """The rviz2 process of the module, where it serves, and its output lines."""
 
-    def __init__(self, proc: subprocess.Popen[str], port: int, lines: list[str]) -> None:
+    def __init__(self, proc: subprocess.Popen[str], port: int) -> None:
         self.proc = proc
         self.port = port
-        self.lines = lines
+        self.lines: list[str] = []
+        self.changed = threading.Condition()
         self.ws = f"ws://127.0.0.1:{port}"
+
+    def read(self) -> None:
+        """Collect the process's output (in a thread of its own)."""
+        assert self.proc.stdout is not None
+        for line in self.proc.stdout:
+            with self.changed:
+                self.lines.append(line)
+                self.changed.notify_all()
+
+    def wait_line(self, text: str) -> str:
+        """The first output line containing ``text``, waiting for it up to the deadline."""
+        with self.changed:
+            found = self.changed.wait_for(
+                lambda: next((line for line in self.lines if text in line), None), DEADLINE
+            )
+        assert found, f"rviz2 did not print {text!r} within {DEADLINE} s: {self.lines}"
+        return found
 
     def get(self, path: str, host: str | None = None) -> tuple[int, dict[str, str], bytes]:
         """``GET path``: status, headers, body."""
@@ -94,29 +111,16 @@ def rviz2(router_endpoint: str) -> Iterator[Rviz2]:
         env=env,
         start_new_session=True,
     )
-    lines: list[str] = []
-    seen: queue.Queue[str] = queue.Queue()
-    assert proc.stdout is not None
-    stdout = proc.stdout
-
-    def read() -> None:
-        for line in stdout:
-            lines.append(line)
-            seen.put(line)
-
-    reader = threading.Thread(target=read, daemon=True)
+    rviz2 = Rviz2(proc, port)
+    reader = threading.Thread(target=rviz2.read, daemon=True)
     reader.start()
-    deadline = time.monotonic() + DEADLINE
-    while not any("viewer: http://" in line for line in lines):
-        if time.monotonic() > deadline or proc.poll() is not None:
-            proc.kill()
-            raise AssertionError(f"rviz2 did not print its viewer line: {lines}")
-        try:
-            seen.get(timeout=0.5)
-        except queue.Empty:
-            pass
     try:
-        yield Rviz2(proc, port, lines)
+        rviz2.wait_line("viewer: http://")
+    except AssertionError:
+        os.killpg(proc.pid, signal.SIGKILL)
+        raise
+    try:
+        yield rviz2
     finally:
         os.killpg(proc.pid, signal.SIGINT)
         try:
@@ -125,7 +129,8 @@ def rviz2(router_endpoint: str) -> Iterator[Rviz2]:
             os.killpg(proc.pid, signal.SIGKILL)
             proc.wait()
         reader.join(5)
-        stdout.close()
+        assert proc.stdout is not None
+        proc.stdout.close()
 
 
 @pytest.fixture(scope="module")
@@ -212,7 +217,7 @@ def test_websocket_origins_other_than_this_machines_are_refused(
 
     assert (asyncio.run(handshake()) == "hello") is accepted
     if not accepted:
-        assert any(f"refused a WebSocket from a page of {origin}" in line for line in rviz2.lines)
+        rviz2.wait_line(f"refused a WebSocket from a page of {origin}")
 
 
 # -- Foxglove ----------------------------------------------------------------------------------
@@ -250,7 +255,7 @@ def test_a_topic_is_subscribed_only_while_a_client_wants_it(rviz2: Rviz2, probe:
             stop = asyncio.Event()
             sender = asyncio.create_task(keep_publishing(publisher, scan, stop))
             await client.wait_for(f"a message on {topic}", lambda: topic in client.received)
-            assert publisher.get_subscription_count() == 1
+            wait_graph(probe, lambda: publisher.get_subscription_count() == 1, "one subscription")
             await client.unsubscribe([topic])
             stop.set()
             await sender
