@@ -163,8 +163,16 @@ class LaserScanDisplay extends Display {
     return [this.topic];
   }
 
+  reset() {
+    this.last = null;
+  }
+
   onMessage(topic, type, msg) {
     if (type !== "sensor_msgs/msg/LaserScan") return;
+    this.ctx.stats.scanMessages += 1;
+    const same = this.last && this.frame === msg.frame && this.last.length === msg.ranges.length && this.last.every((r, i) => r === msg.ranges[i]);
+    if (same) return; // the same scan again: nothing to draw
+    this.last = msg.ranges;
     const positions = [];
     msg.ranges.forEach((range, i) => {
       if (range === null || range < msg.range_min || range > msg.range_max) return;
@@ -174,7 +182,6 @@ class LaserScanDisplay extends Display {
     this.geometry.setAttribute("position", new THREE.Float32BufferAttribute(positions, 3));
     this.geometry.computeBoundingSphere();
     this.frame = msg.frame;
-    this.ctx.stats.scanMessages += 1;
     this.ctx.stats.scanPoints = positions.length / 3;
     this.ctx.scene.requestRender();
   }
@@ -236,6 +243,10 @@ class OdometryDisplay extends Display {
         this.poses.shift();
       }
     }
+    const end = this.trailLength * 3;
+    const still = this.trailLength > 0 && Math.hypot(msg.p[0] - this.trail[end - 3], msg.p[1] - this.trail[end - 2], msg.p[2] - this.trail[end - 1]) < 0.005;
+    this.frame = msg.frame;
+    if (still && !moved) return; // standing still: nothing new to draw
     if (this.trailLength === TRAIL) {
       this.trail.copyWithin(0, 3); // drop the oldest point
       this.trailLength -= 1;
@@ -246,7 +257,6 @@ class OdometryDisplay extends Display {
     geometry.setDrawRange(0, this.trailLength);
     geometry.attributes.position.needsUpdate = true;
     geometry.computeBoundingSphere();
-    this.frame = msg.frame;
     this.ctx.scene.requestRender();
   }
 

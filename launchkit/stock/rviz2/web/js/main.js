@@ -155,8 +155,11 @@ function onMessage(message) {
   const { topic, type, msg } = message;
   if (type === "tf2_msgs/msg/TFMessage") {
     stats.tfMessages += 1;
-    for (const t of msg.transforms) if (t.t.every((v) => v !== null) && t.q.every((v) => v !== null)) tf.set(t.parent, t.child, t.t, t.q);
-    ctx.scene.requestRender();
+    let changed = false;
+    for (const t of msg.transforms) {
+      if (t.t.every((v) => v !== null) && t.q.every((v) => v !== null)) changed = tf.set(t.parent, t.child, t.t, t.q) || changed;
+    }
+    if (changed) ctx.scene.requestRender();
   }
   for (const display of state.displays) if (display.enabled && display.topics().includes(topic)) display.onMessage(topic, type, msg);
   sliders.onMessage(topic, type, msg);

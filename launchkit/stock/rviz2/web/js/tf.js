@@ -15,15 +15,22 @@ export class TfTree {
     this.version += 1;
   }
 
+  // Store a transform; whether anything changed (a robot standing still republishes the same
+  // transforms, and the view need not be drawn again for them).
   set(parent, child, t, q) {
-    if (!parent || !child || parent === child) return;
+    if (!parent || !child || parent === child) return false;
     const matrix = new THREE.Matrix4().compose(
       new THREE.Vector3(t[0] ?? 0, t[1] ?? 0, t[2] ?? 0),
       new THREE.Quaternion(q[0] ?? 0, q[1] ?? 0, q[2] ?? 0, q[3] ?? 1).normalize(),
       new THREE.Vector3(1, 1, 1),
     );
+    const old = this.frames.get(child);
+    if (old && old.parent === parent && old.matrix.elements.every((v, i) => Math.abs(v - matrix.elements[i]) < 1e-6)) {
+      return false;
+    }
     this.frames.set(child, { parent, matrix });
     this.version += 1;
+    return true;
   }
 
   has(frame) {
