@@ -3,6 +3,7 @@
 import * as THREE from "three";
 
 const MAX_DEPTH = 100;
+const TOLERANCE = 1e-4; // metres, and about radians: far below a pixel at any sensible zoom
 
 export class TfTree {
   constructor() {
@@ -15,8 +16,9 @@ export class TfTree {
     this.version += 1;
   }
 
-  // Store a transform; whether anything changed (a robot standing still republishes the same
-  // transforms, and the view need not be drawn again for them).
+  // Store a transform; whether it changed visibly. A robot standing still republishes the same
+  // transforms, or ones that creep by micrometres (the simulator's wheels settle): those are kept
+  // back until they add up to more than TOLERANCE, so the view is not drawn again for nothing.
   set(parent, child, t, q) {
     if (!parent || !child || parent === child) return false;
     const matrix = new THREE.Matrix4().compose(
@@ -25,7 +27,7 @@ export class TfTree {
       new THREE.Vector3(1, 1, 1),
     );
     const old = this.frames.get(child);
-    if (old && old.parent === parent && old.matrix.elements.every((v, i) => Math.abs(v - matrix.elements[i]) < 1e-6)) {
+    if (old && old.parent === parent && old.matrix.elements.every((v, i) => Math.abs(v - matrix.elements[i]) < TOLERANCE)) {
       return false;
     }
     this.frames.set(child, { parent, matrix });
