@@ -243,13 +243,20 @@ def test_both_foxglove_subprotocols_are_served(rviz2: Rviz2, probe: Any, subprot
 
 
 def test_a_topic_is_subscribed_only_while_a_client_wants_it(rviz2: Rviz2, probe: Any) -> None:
-    topic = "/lazy_scan"
+    topic, barrier = "/lazy_scan", "/lazy_barrier"
     publisher = probe.create_publisher(LaserScan, topic, ros.qos_profile_sensor_data)
+    barrier_publisher = probe.create_publisher(String, barrier, 10)
     scan = LaserScan(ranges=[1.5] * 90, range_max=10.0)
 
     async def session() -> FoxgloveClient:
         async with FoxgloveClient(rviz2.ws) as client:
-            await client.wait_for(f"{topic} advertised", lambda: topic in client.channels)
+            await client.wait_for(
+                "both topics advertised", lambda: {topic, barrier} <= client.channels.keys()
+            )
+            # rviz2's subscription to the barrier comes after it saw both topics; once the
+            # barrier's subscription reaches this process, one to the scan would have too
+            await client.subscribe([barrier])
+            wait_graph(probe, lambda: barrier_publisher.get_subscription_count() == 1, "barrier")
             assert publisher.get_subscription_count() == 0, "subscribed with nobody watching"
             await client.subscribe([topic])
             stop = asyncio.Event()
