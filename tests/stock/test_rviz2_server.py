@@ -9,13 +9,7 @@ its own topic names.
 from __future__ import annotations
 
 import asyncio
-import http.client
 import json
-import os
-import signal
-import subprocess
-import sys
-import threading
 import time
 from collections.abc import Iterator
 from pathlib import Path
@@ -32,52 +26,11 @@ import launchkit.ros as ros
 from launchkit.ros.msgs import deserialize, serialize
 from tests.stock.conftest import free_port, latched
 from tests.stock.foxglove_client import FoxgloveClient
+from tests.stock.rviz2_process import DEADLINE, Rviz2, running_rviz2
 
 CONFIG = Path(__file__).parents[2] / "config" / "robot.rviz"  # robot_wheel's
 ALLOWED = "http://allowed.example"
 PAGE = "launchkit.viewer.v1"
-DEADLINE = 20.0
-
-
-class Rviz2:
-    """The rviz2 process of the module, where it serves, and its output lines."""
-
-    def __init__(self, proc: subprocess.Popen[str], port: int) -> None:
-        self.proc = proc
-        self.port = port
-        self.lines: list[str] = []
-        self.changed = threading.Condition()
-        self.ws = f"ws://127.0.0.1:{port}"
-
-    def read(self) -> None:
-        """Collect the process's output (in a thread of its own)."""
-        assert self.proc.stdout is not None
-        for line in self.proc.stdout:
-            with self.changed:
-                self.lines.append(line)
-                self.changed.notify_all()
-
-    def wait_line(self, text: str) -> str:
-        """The first output line containing ``text``, waiting for it up to the deadline."""
-        with self.changed:
-            found = self.changed.wait_for(
-                lambda: next((line for line in self.lines if text in line), None), DEADLINE
-            )
-        assert found, f"rviz2 did not print {text!r} within {DEADLINE} s: {self.lines}"
-        return found
-
-    def get(self, path: str, host: str | None = None) -> tuple[int, dict[str, str], bytes]:
-        """``GET path``: status, headers, body."""
-        connection = http.client.HTTPConnection("127.0.0.1", self.port, timeout=10)
-        try:
-            connection.putrequest("GET", path, skip_host=host is not None)
-            if host is not None:
-                connection.putheader("Host", host)
-            connection.endheaders()
-            response = connection.getresponse()
-            return response.status, dict(response.getheaders()), response.read()
-        finally:
-            connection.close()
 
 
 @pytest.fixture(scope="module")
@@ -96,41 +49,8 @@ def router_endpoint() -> Iterator[str]:
 @pytest.fixture(scope="module")
 def rviz2(router_endpoint: str) -> Iterator[Rviz2]:
     """rviz2 serving on a free port, allowing one extra origin."""
-    port = free_port()
-    env = {**os.environ, "LAUNCHKIT_ROUTER": router_endpoint}
-    env.pop("LAUNCHKIT_SUPERVISOR_SOCKET", None)
-    proc = subprocess.Popen(
-        [
-            *(sys.executable, "-m", "launchkit.stock.rviz2.node", "-d", str(CONFIG)),
-            *("--port", str(port), "--allow-origin", ALLOWED),
-        ],
-        stdin=subprocess.DEVNULL,
-        stdout=subprocess.PIPE,
-        stderr=subprocess.STDOUT,
-        text=True,
-        env=env,
-        start_new_session=True,
-    )
-    rviz2 = Rviz2(proc, port)
-    reader = threading.Thread(target=rviz2.read, daemon=True)
-    reader.start()
-    try:
-        rviz2.wait_line("viewer: http://")
-    except AssertionError:
-        os.killpg(proc.pid, signal.SIGKILL)
-        raise
-    try:
+    with running_rviz2(router_endpoint, "-d", str(CONFIG), "--allow-origin", ALLOWED) as rviz2:
         yield rviz2
-    finally:
-        os.killpg(proc.pid, signal.SIGINT)
-        try:
-            proc.wait(15)
-        except subprocess.TimeoutExpired:
-            os.killpg(proc.pid, signal.SIGKILL)
-            proc.wait()
-        reader.join(5)
-        assert proc.stdout is not None
-        proc.stdout.close()
 
 
 @pytest.fixture(scope="module")

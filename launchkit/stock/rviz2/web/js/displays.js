@@ -88,7 +88,13 @@ class RobotModelDisplay extends Display {
       this.ctx.problem(`RobotModel: ${error.message}`);
       return;
     }
-    const built = buildRobot(model, () => this.ctx.scene.requestRender());
+    this.ctx.stats.meshesLoaded = 0;
+    this.ctx.stats.meshesFailed = 0;
+    const built = buildRobot(model, (pending) => {
+      this.ctx.stats.meshesLoaded = pending.loaded;
+      this.ctx.stats.meshesFailed = pending.failed;
+      this.ctx.scene.requestRender();
+    });
     this.links = built.links;
     for (const group of this.links.values()) this.root.add(group);
     this.ctx.stats.robotLinkCount = this.links.size;

@@ -13,7 +13,7 @@ const $ = (id) => document.getElementById(id);
 
 const stats = {
   connected: false, connections: 0, sessionId: null, frames: 0, fps: 0,
-  robotLinks: 0, robotLinkCount: 0, firstRobotMs: null, robotName: null,
+  robotLinks: 0, robotLinkCount: 0, firstRobotMs: null, robotName: null, meshesLoaded: 0, meshesFailed: 0,
   scanMessages: 0, scanPoints: 0, odomMessages: 0, tfMessages: 0,
   imageTopic: null, imageFrames: 0, imageFps: 0, twistsSent: 0,
   sliders: 0, sliderMessages: 0, fixedFrame: null, problems: [],

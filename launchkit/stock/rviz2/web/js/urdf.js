@@ -89,11 +89,14 @@ function loadMesh(uri, rgba, target, pending) {
     return;
   }
   const extension = uri.split(".").pop().toLowerCase();
-  const done = (object) => { target.add(object); pending.loaded += 1; pending.onLoad(); };
-  const failed = (error) => { console.warn(`mesh ${uri}: ${error}`); pending.failed += 1; pending.onLoad(); };
+  const done = (object) => { target.add(object); pending.loaded += 1; pending.onLoad(pending); };
+  const failed = (error) => { console.warn(`mesh ${uri}: ${error}`); pending.failed += 1; pending.onLoad(pending); };
   pending.total += 1;
   if (extension === "stl") {
-    new STLLoader().load(url, (geometry) => done(new THREE.Mesh(geometry, makeMaterial(rgba))), undefined, failed);
+    new STLLoader().load(url, (geometry) => {
+      geometry.computeVertexNormals(); // STL files often carry zero or wrong facet normals
+      done(new THREE.Mesh(geometry, makeMaterial(rgba)));
+    }, undefined, failed);
   } else if (extension === "dae") {
     new ColladaLoader().load(url, (collada) => {
       const scene = collada.scene;
