@@ -115,12 +115,13 @@ class RateMeter:
         self.arrivals.append(now)
 
     def rate(self, now: float) -> float:
-        """The rate now; 0 when fewer than two messages arrived in the window."""
+        """The rate now (from the intervals between the messages of the window, as ``ros2
+        topic hz`` does); 0 when fewer than two messages arrived in the window."""
         while self.arrivals and now - self.arrivals[0] > RATE_WINDOW:
             self.arrivals.popleft()
         if len(self.arrivals) < 2:
             return 0.0
-        return (len(self.arrivals) - 1) / max(now - self.arrivals[0], 1e-6)
+        return (len(self.arrivals) - 1) / max(self.arrivals[-1] - self.arrivals[0], 1e-6)
 
 
 class Hub:
