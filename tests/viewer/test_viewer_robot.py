@@ -78,12 +78,15 @@ def foxglove_view(url: str) -> Any:
 
 
 def robot_pixels(viewer: Viewer) -> tuple[list[Any], list[Any], list[Any]]:
-    """Where the links' origins project, and the colours there with the model shown and hidden."""
+    """Where the links' origins project, and the colours there with the model shown and hidden
+    (the TF axes, drawn at the same origins, hidden for both)."""
     points = viewer.page.evaluate(f"{LINKS}.map(f => window.__viewer.project(f))")
+    viewer.page.evaluate("window.__viewer.setDisplay('TF', false)")
     shown = viewer.page.evaluate("p => window.__viewer.sample(p)", points)
     viewer.page.evaluate("window.__viewer.setDisplay('RobotModel', false)")
     hidden = viewer.page.evaluate("p => window.__viewer.sample(p)", points)
     viewer.page.evaluate("window.__viewer.setDisplay('RobotModel', true)")
+    viewer.page.evaluate("window.__viewer.setDisplay('TF', true)")
     return points, shown, hidden
 
 
@@ -130,11 +133,11 @@ def test_a_page_shows_and_drives_the_robot_and_the_camera_renders_only_for_it(
     background = viewer.page.evaluate("window.__viewer.background()")
     on_screen = [p for p in points if p and p["visible"]]
     assert len(on_screen) == len(LINKS), points
+    # the white wheel, the lidar and the camera stand out; the dark grey base barely does
     changed = [i for i in range(len(LINKS)) if distance(shown[i], hidden[i]) > 40]
-    assert len(changed) >= 2, (
-        f"the model changes no pixels: {list(zip(LINKS, shown, hidden, strict=True))}"
-    )
-    assert max(distance(shown[i], background) for i in changed) > 60, (shown, background)
+    seen = list(zip(LINKS, shown, hidden, strict=True))
+    assert len(changed) >= 2, f"the model changes too few pixels: {seen}"
+    assert all(distance(hidden[i], background) < 30 for i in changed), (seen, background)
 
     # 4. the laser scan is drawn as points
     viewer.wait("s.scanMessages >= 3 && s.scanPoints > 0", "scan points (obstacles in range)")
