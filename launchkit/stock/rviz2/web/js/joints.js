@@ -25,8 +25,9 @@ export class JointSliders {
     this.touched = false;
     this.pending = null;
     this.watching = false;
-    center.addEventListener("click", () => this.setAll(() => 0.5));
-    randomize.addEventListener("click", () => this.setAll(() => Math.random()));
+    // as joint_state_publisher: a joint rests at 0, or mid-range when 0 is outside its limits
+    center.addEventListener("click", () => this.setAll((low, high) => (low <= 0 && 0 <= high ? 0 : (low + high) / 2)));
+    randomize.addEventListener("click", () => this.setAll((low, high) => low + Math.random() * (high - low)));
   }
 
   robotChanged(model) {
@@ -55,7 +56,8 @@ export class JointSliders {
     for (const joint of this.joints) {
       const [low, high] = range(joint);
       const input = document.createElement("input");
-      Object.assign(input, { type: "range", min: low, max: high, step: (high - low) / 1000, value: Math.min(Math.max(0, low), high) });
+      const rest = low <= 0 && 0 <= high ? 0 : (low + high) / 2;
+      Object.assign(input, { type: "range", min: low, max: high, step: (high - low) / 1000, value: rest });
       input.dataset.joint = joint.name;
       const value = document.createElement("span");
       value.className = "muted";
@@ -82,12 +84,8 @@ export class JointSliders {
     this.showValues();
   }
 
-  setAll(fraction) {
-    for (const { input } of this.inputs.values()) {
-      const low = Number(input.min);
-      const high = Number(input.max);
-      input.value = low + fraction() * (high - low);
-    }
+  setAll(position) {
+    for (const { input } of this.inputs.values()) input.value = position(Number(input.min), Number(input.max));
     this.touched = true;
     this.changed();
   }
