@@ -1,6 +1,8 @@
 """The viewer page in a real headless Chromium (Debian's ``chromium``, driven by playwright).
 
-``browser`` is one Chromium per test session (per xdist worker); ``open_viewer(url)`` opens a
+``browser`` is one Chromium per test module (module, not session: playwright's sync API keeps
+an event loop running in the test's thread while it is open, and ``asyncio.run`` in any later
+test of the worker would then fail); ``open_viewer(url)`` opens a
 page on it and gives a :class:`Viewer`, whose waits are on the page's own state
 (``window.__viewer.stats``) with deadlines that say what was awaited. When a test fails, every
 page it opened is photographed into the test's temporary folder and the path is shown in the
@@ -41,7 +43,7 @@ def chromium_path() -> str | None:
     return configured or shutil.which("chromium") or shutil.which("chromium-browser")
 
 
-@pytest.fixture(scope="session")
+@pytest.fixture(scope="module")
 def browser() -> Iterator[Any]:
     """A headless Chromium for the session (skipped, saying why, only where none is installed).
     Playwright starts it with a fresh temporary profile of its own."""
