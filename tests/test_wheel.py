@@ -73,6 +73,8 @@ def check_viewer_files(python: Path, cwd: Path) -> None:
     imports = json.loads(re.search(r'<script type="importmap">(.*?)</script>', index, re.S)[1])
     for target in imports["imports"].values():
         assert (root / target).exists(), target
+    for linked in re.findall(r'(?:href|src)="([^":]+)"', index):  # stylesheet, preloads, main
+        assert (root / linked).is_file(), linked
     for name in ("js/main.js", "style.css", "vendor/VENDORED.md", "vendor/three/LICENSE"):
         assert (root / name).is_file(), name
     modules = [*root.glob("js/*.js"), *root.glob("vendor/three/**/*.js")]
