@@ -43,11 +43,13 @@ def test_sliders_move_the_joints_and_the_page_survives_a_restart(
     first.stop().assert_exit_codes({"*": 0})
     viewer.wait("!s.connected", "the page to notice the launch is gone")
     assert viewer.page.locator("#banner").is_visible()
+    before = viewer.stats()["tfMessages"]
 
     # ... and when it is started again the page is back by itself, robot and all
     second = launch("robot_wheel", "display.launch.xml", env=env)
     viewer.wait(
-        "s.connected && s.connections >= 2 && s.robotLinks >= 6", "the page back after the restart"
+        f"s.connected && s.connections >= 2 && s.tfMessages > {before} && s.robotLinks >= 6",
+        "the page back after the restart, the robot drawn from the new launch's transforms",
     )
     assert not viewer.page.locator("#banner").is_visible()
     second.stop().assert_exit_codes({"*": 0})

@@ -174,9 +174,11 @@ function onHello(hello) {
   const newServer = stats.sessionId !== hello.sessionId;
   stats.sessionId = hello.sessionId;
   if (newServer) {
-    // a new (restarted) server: forget its predecessor's transforms and robot
+    // a new (restarted) server: forget its predecessor's transforms and robot, and draw again
     tf.clear();
     for (const display of state.displays) display.reset();
+    stats.robotLinks = 0;
+    if (ctx.scene) ctx.scene.requestRender();
   }
   if (!state.config || JSON.stringify(state.config) !== JSON.stringify(hello.config)) {
     state.config = hello.config;
