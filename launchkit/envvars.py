@@ -7,7 +7,8 @@
 ``LAUNCHKIT_SUPERVISOR_SOCKET``    the launcher's child-request socket, set by ``launchkit run``
                                    for its processes (:mod:`launchkit.runtime.supervisor_client`)
 ``LAUNCHKIT_TIMEOUT_SCALE``        multiplies every wait of the pytest plugin (slow machines)
-``LAUNCHKIT_FOXGLOVE_PORT``        the rviz2 stand-in's WebSocket port when ``--port`` is not given
+``LAUNCHKIT_VIEWER_PORT``          the rviz2 stand-in's viewer (HTTP + WebSocket) port when
+                                   neither ``--port`` nor its ``port`` parameter is given
 =================================  =================================================================
 
 Other variables launchkit reads keep the names ROS gives them (``ROS_DOMAIN_ID``,
@@ -19,4 +20,4 @@ from __future__ import annotations
 ROUTER = "LAUNCHKIT_ROUTER"
 SUPERVISOR_SOCKET = "LAUNCHKIT_SUPERVISOR_SOCKET"
 TIMEOUT_SCALE = "LAUNCHKIT_TIMEOUT_SCALE"
-FOXGLOVE_PORT = "LAUNCHKIT_FOXGLOVE_PORT"
+VIEWER_PORT = "LAUNCHKIT_VIEWER_PORT"

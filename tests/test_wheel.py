@@ -1,8 +1,11 @@
 """The installed wheel carries the robot package's share files: ``$(find-pkg-share
-robot_wheel)`` points inside site-packages and its launch files run from anywhere."""
+robot_wheel)`` points inside site-packages and its launch files run from anywhere. It also
+carries the browser viewer's page and its vendored libraries, every import resolving."""
 
 from __future__ import annotations
 
+import json
+import re
 import subprocess
 import sys
 import venv
@@ -52,3 +55,30 @@ def test_installed_wheel_has_the_robot_share_dir(tmp_path: Path) -> None:
     assert "spawn_entity" in printed.stdout and "robot_state_publisher" in printed.stdout
     assert str(share / "config" / "robot.rviz") in printed.stdout
     assert "launchkit.stock.gazebo_ros.server" in printed.stdout
+    check_viewer_files(python, elsewhere)
+
+
+def check_viewer_files(python: Path, cwd: Path) -> None:
+    """The installed viewer page: its files, and every module it imports, are in the wheel."""
+    root = Path(
+        run(
+            python,
+            "-c",
+            "from launchkit.stock.rviz2.web_files import WEB_ROOT; print(WEB_ROOT)",
+            cwd=cwd,
+        ).stdout.strip()
+    )
+    assert "site-packages" in root.parts, root
+    index = (root / "index.html").read_text()
+    imports = json.loads(re.search(r'<script type="importmap">(.*?)</script>', index, re.S)[1])
+    for target in imports["imports"].values():
+        assert (root / target).exists(), target
+    for linked in re.findall(r'(?:href|src)="([^":]+)"', index):  # stylesheet, preloads, main
+        assert (root / linked).is_file(), linked
+    for name in ("js/main.js", "style.css", "vendor/VENDORED.md", "vendor/three/LICENSE"):
+        assert (root / name).is_file(), name
+    modules = [*root.glob("js/*.js"), *root.glob("vendor/three/**/*.js")]
+    assert len(modules) >= 10, modules
+    for module in modules:
+        for relative in re.findall(r"""from\s+['"](\.{1,2}/[^'"]+)['"]""", module.read_text()):
+            assert (module.parent / relative).resolve().is_file(), f"{module}: {relative}"

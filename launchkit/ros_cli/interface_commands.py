@@ -5,9 +5,9 @@ from __future__ import annotations
 import argparse
 from typing import Any
 
+from launchkit.ros.message_data import constants_of, fields_of
 from launchkit.ros.msgs import get_message, get_service, normalize_type_name, type_names
 from launchkit.ros.msgs._api import MessageTypeError
-from launchkit.ros_cli.msgyaml import constants_of, fields_of
 
 _BASE, _NAME, _ARRAY, _SEQUENCE = 1, 2, 3, 4
 

@@ -6,6 +6,7 @@ import argparse
 from typing import Any
 
 from launchkit.errors import RuntimeLaunchError
+from launchkit.ros.message_data import from_yaml, short_repr
 from launchkit.ros.msgs import get_service
 from launchkit.ros.services import ServiceCallError
 from launchkit.ros_cli.common import (
@@ -16,7 +17,6 @@ from launchkit.ros_cli.common import (
     normalize_topic,
     visible,
 )
-from launchkit.ros_cli.msgyaml import from_yaml, short_repr
 
 
 def add_parser(commands: Any) -> None:

@@ -12,6 +12,7 @@ from typing import Any
 
 from launchkit.ros.clock import Clock, ClockType
 from launchkit.ros.keyexpr import Token
+from launchkit.ros.message_data import from_yaml, to_yaml
 from launchkit.ros.msgs import get_message, normalize_type_name
 from launchkit.ros.qos import DurabilityPolicy, QoSProfile, ReliabilityPolicy
 from launchkit.ros.rate import Rate
@@ -23,7 +24,6 @@ from launchkit.ros_cli.common import (
     normalize_topic,
     visible,
 )
-from launchkit.ros_cli.msgyaml import from_yaml, to_yaml
 
 
 def add_parser(commands: Any) -> None:
@@ -194,7 +194,7 @@ def _linger(pub: Any) -> None:
 
 
 def _one_line(msg: Any) -> str:
-    from launchkit.ros_cli.msgyaml import short_repr
+    from launchkit.ros.message_data import short_repr
 
     return short_repr(msg)
 

@@ -166,7 +166,15 @@ class ChildRequests:
                 raise RequestError(f"no process {process_id} was started by this connection")
             self._host.stop_child(stopped)
             return {}
-        raise RequestError(f"unknown op {op!r} (expected 'start' or 'stop')")
+        if op == "announce":
+            text = request.get("text")
+            if set(request) != {"op", "text"} or not isinstance(text, str):
+                raise RequestError('an announce request is {"op": "announce", "text": TEXT}')
+            if not text or len(text) > 500 or not text.isprintable():
+                raise RequestError("text must be one printable line of at most 500 characters")
+            self._host.log("INFO", owner.label, text)
+            return {}
+        raise RequestError(f"unknown op {op!r} (expected 'start', 'stop' or 'announce')")
 
     def _closed(self, connection: _Connection) -> None:
         self._forget(connection)

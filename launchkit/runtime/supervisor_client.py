@@ -20,6 +20,9 @@ socket, one JSON object per packet, one reply per request, in order::
      "cwd": "/tmp", "respawn": true, "respawn_delay": 1.0, "output": "screen"}
                                     -> {"ok": true, "id": 4, "pid": 4242, "label": "worker-4"}
     {"op": "stop", "id": 4}         -> {"ok": true}
+    {"op": "announce", "text": "viewer: http://127.0.0.1:8765/"}
+                                    -> {"ok": true}  (printed on the launcher's console as
+                                       "[INFO] [rviz2-4]: viewer: ...", whatever the output mode)
     anything wrong                  -> {"ok": false, "error": "what was wrong"}
 """
 
@@ -109,6 +112,12 @@ class SupervisorClient:
         """Have the launcher stop a process this connection started (SIGINT, then escalation);
         it is not respawned."""
         self.request({"op": "stop", "id": process_id})
+
+    def announce(self, text: str) -> None:
+        """Have the launcher print one line for the user, as its own ``[INFO]`` line under
+        this process's label, on its console and in ``launch.log`` whatever this process's
+        output mode (an address to open, say)."""
+        self.request({"op": "announce", "text": text})
 
     def request(self, message: dict[str, Any]) -> dict[str, Any]:
         """Send one request and return its reply; :class:`SupervisorError` if refused or lost."""

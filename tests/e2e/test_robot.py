@@ -16,7 +16,6 @@ from __future__ import annotations
 import math
 import os
 import signal
-import socket
 import subprocess
 import sys
 import threading
@@ -29,8 +28,6 @@ import pytest
 from launchkit.ros.msgs.geometry_msgs.msg import Twist, Vector3
 
 import launchkit.ros as ros
-from launchkit.ros.msgs import deserialize
-from tests.stock.foxglove_client import receive_topics
 
 SCAN = "/scan"
 
@@ -212,30 +209,3 @@ def test_without_gazebo_only_the_description_runs(launch) -> None:  # type: igno
     assert static.transforms
     result = handle.stop()
     assert set(result.exit_codes) == {"robot_state_publisher"}
-
-
-def test_the_default_launch_also_serves_the_viewer(launch) -> None:  # type: ignore[no-untyped-def]
-    with socket.socket() as probe:
-        probe.bind(("127.0.0.1", 0))
-        port = probe.getsockname()[1]
-    handle = launch(
-        "robot_wheel",
-        "gazebo_and_rviz.launch.xml",
-        env={"LAUNCHKIT_FOXGLOVE_PORT": str(port)},
-        ready_timeout=60,
-    )
-    handle.process("rviz2").wait_output(f"ws://127.0.0.1:{port}", timeout=30)
-    handle.expect_topic("/odom", within=30)
-    # What a Foxglove viewer gets from the running robot: the model, its transforms, the scan.
-    client = receive_topics(f"ws://127.0.0.1:{port}", ["/robot_description", "/tf", "/scan"])
-    description = deserialize(client.received["/robot_description"][0], "std_msgs/msg/String")
-    assert "three_wheeled_robot" in description.data
-    frames = {
-        t.child_frame_id
-        for raw in client.received["/tf"]
-        for t in deserialize(raw, "tf2_msgs/msg/TFMessage").transforms
-    }
-    assert frames & {"base", "wheel_left_link", "wheel_right_link"}, frames
-    scan = deserialize(client.received["/scan"][0], "sensor_msgs/msg/LaserScan")
-    assert len(scan.ranges) == 360 and scan.header.frame_id == "lidar"
-    handle.stop().assert_exit_codes({"spawn_entity.py": 0, "*": {0, -2}})

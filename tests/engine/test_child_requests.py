@@ -120,7 +120,7 @@ def test_bad_requests_are_refused_and_a_stop_request_stops_for_good(run, tmp_pat
     launcher = run(owner(tmp_path, then=BAD_REQUESTS_THEN_STOP))
     launcher.wait_line("[owner-1] owner done")
     refusals = [line.split("refused: ", 1)[1] for line in launcher.lines if "refused: " in line]
-    assert refusals[0] == "unknown op 'reboot' (expected 'start' or 'stop')"
+    assert refusals[0] == "unknown op 'reboot' (expected 'start', 'stop' or 'announce')"
     assert refusals[1] == "cmd must be a non-empty list of strings (the argv)"
     assert refusals[2] == "program 'no-such-program-xyz' of process 'x' not found"
     assert refusals[3] == "unknown field(s) colour in a start request"
@@ -143,6 +143,36 @@ def test_bad_requests_are_refused_and_a_stop_request_stops_for_good(run, tmp_pat
     assert launcher.finish() == 0
     wait_gone(list(launcher.pids.values()))
     assert not Path(path).parent.exists(), "the socket's folder is removed at exit"
+
+
+ANNOUNCER = """\
+import sys, time
+from launchkit.runtime.supervisor_client import SupervisorClient, SupervisorError
+
+client = SupervisorClient.from_environment()
+client.announce("viewer: http://127.0.0.1:1/")
+for text in ("two\\nlines", "", "x" * 501):
+    try:
+        client.announce(text)
+    except SupervisorError as error:
+        print("refused:", error, file=sys.stderr, flush=True)
+print("announced on stdout", flush=True)
+print("announcer done", file=sys.stderr, flush=True)
+time.sleep(300)
+"""
+
+
+def test_an_announcement_reaches_the_console_whatever_the_output_mode(run, tmp_path) -> None:  # type: ignore[no-untyped-def]
+    script = tmp_path / "announcer.py"
+    script.write_text(ANNOUNCER)
+    launcher = run(f'<executable name="announcer" output="log" cmd="{sys.executable} {script}"/>')
+    launcher.wait_line("[announcer-1] announcer done")
+    assert "[INFO] [announcer-1]: viewer: http://127.0.0.1:1/" in launcher.lines
+    refusals = [line.split("refused: ", 1)[1] for line in launcher.lines if "refused: " in line]
+    assert refusals == ["text must be one printable line of at most 500 characters"] * 3
+    assert "announced on stdout" not in launcher.text  # output="log": stdout is not shown
+    launcher.signal(signal.SIGINT)
+    assert launcher.finish() == 0
 
 
 def test_a_requested_child_is_a_process_of_the_launch_for_the_plugin(launch, tmp_path) -> None:  # type: ignore[no-untyped-def]

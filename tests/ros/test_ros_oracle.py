@@ -14,9 +14,9 @@ from typing import Any
 
 import pytest
 
+from launchkit.ros.message_data import fields_of
 from launchkit.ros.msgs import deserialize, get_message, serialize, type_hash
 from launchkit.ros.msgs._typestore import typestore
-from launchkit.ros_cli.msgyaml import fields_of
 
 try:
     from rclpy.serialization import deserialize_message, serialize_message

@@ -1,10 +1,9 @@
-"""A small Foxglove WebSocket client for tests (protocol ``foxglove.sdk.v1``)."""
+"""A small Foxglove WebSocket client for tests (``foxglove.sdk.v1`` or ``...websocket.v1``)."""
 
 from __future__ import annotations
 
 import asyncio
 import json
-import re
 import struct
 from dataclasses import dataclass, field
 from typing import Any
@@ -13,7 +12,6 @@ from websockets.asyncio.client import ClientConnection, connect
 
 SUBPROTOCOL = "foxglove.sdk.v1"
 MESSAGE_DATA = 0x01
-UNKNOWN_CHANNEL = re.compile(r"Unknown channel ID: (\d+)")
 
 
 @dataclass
@@ -21,14 +19,29 @@ class FoxgloveClient:
     """Connects, records advertised channels, subscribes by topic, collects message payloads."""
 
     url: str
+    subprotocol: str = SUBPROTOCOL
+    origin: str | None = None
     channels: dict[str, dict[str, Any]] = field(default_factory=dict)
     subscriptions: dict[int, str] = field(default_factory=dict)
     received: dict[str, list[bytes]] = field(default_factory=dict)
+    statuses: list[dict[str, Any]] = field(default_factory=list)
+    binary: list[bytes] = field(default_factory=list)
+    server_info: dict[str, Any] = field(default_factory=dict)
     _ws: ClientConnection | None = None
 
     async def __aenter__(self) -> FoxgloveClient:
-        self._ws = await connect(self.url, subprotocols=[SUBPROTOCOL])  # type: ignore[list-item]
+        self._ws = await connect(
+            self.url,
+            subprotocols=[self.subprotocol],  # type: ignore[list-item]
+            origin=self.origin,  # type: ignore[arg-type]
+        )
         return self
+
+    @property
+    def ws(self) -> ClientConnection:
+        """The connection."""
+        assert self._ws is not None
+        return self._ws
 
     async def __aexit__(self, *exc: object) -> None:
         assert self._ws is not None
@@ -39,21 +52,23 @@ class FoxgloveClient:
         frame = await asyncio.wait_for(self._ws.recv(), timeout)
         if isinstance(frame, str):
             message = json.loads(frame)
+            if message["op"] == "serverInfo":
+                self.server_info = message
+            if message["op"] == "status":
+                self.statuses.append(message)
             if message["op"] == "advertise":
                 for channel in message["channels"]:
                     self.channels[channel["topic"]] = channel
-            unknown = UNKNOWN_CHANNEL.fullmatch(message.get("message", ""))
-            if message["op"] == "status" and unknown:
-                # foxglove-sdk 0.30 can advertise a channel a moment before it accepts
-                # subscriptions to it (status "Unknown channel ID"): subscribe again
-                channel_id = int(unknown.group(1))
-                topics = [t for t, c in self.channels.items() if c["id"] == channel_id]
-                await self.subscribe(topics)
+            if message["op"] == "unadvertise":
+                gone = set(message["channelIds"])
+                self.channels = {t: c for t, c in self.channels.items() if c["id"] not in gone}
             return
         if frame[0] == MESSAGE_DATA:
             (subscription,) = struct.unpack_from("<I", frame, 1)
             topic = self.subscriptions[subscription]
             self.received.setdefault(topic, []).append(bytes(frame[13:]))
+        else:
+            self.binary.append(bytes(frame))
 
     async def wait_for(self, what: str, predicate: Any, deadline_s: float = 10.0) -> None:
         """Handle frames until ``predicate()`` holds; fail naming ``what`` after the deadline."""
@@ -83,6 +98,17 @@ class FoxgloveClient:
             self.subscriptions[sub_id] = topic
             subs.append({"id": sub_id, "channelId": self.channels[topic]["id"]})
         await self._ws.send(json.dumps({"op": "subscribe", "subscriptions": subs}))
+
+    async def unsubscribe(self, topics: list[str]) -> None:
+        """End the subscriptions to ``topics``."""
+        ids = [i for i, t in self.subscriptions.items() if t in topics]
+        for sub_id in ids:
+            del self.subscriptions[sub_id]
+        await self.ws.send(json.dumps({"op": "unsubscribe", "subscriptionIds": ids}))
+
+    async def send_json(self, message: dict[str, Any]) -> None:
+        """Send one JSON operation."""
+        await self.ws.send(json.dumps(message))
 
 
 def receive_topics(url: str, topics: list[str], timeout: float = 20.0) -> FoxgloveClient:

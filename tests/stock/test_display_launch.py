@@ -14,7 +14,7 @@ TOPICS = ["/robot_description", "/tf_static", "/joint_states", "/tf"]
 
 def test_display_launch_shows_the_robot_in_foxglove(launch: Any) -> None:
     port = free_port()
-    handle = launch("robot_wheel", "display.launch.xml", env={"LAUNCHKIT_FOXGLOVE_PORT": str(port)})
+    handle = launch("robot_wheel", "display.launch.xml", env={"LAUNCHKIT_VIEWER_PORT": str(port)})
     handle.process("rviz2").wait_output(f"ws://127.0.0.1:{port}", timeout=20)
 
     client = receive_topics(f"ws://127.0.0.1:{port}", list(TOPICS))

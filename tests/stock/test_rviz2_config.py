@@ -7,7 +7,7 @@ from pathlib import Path
 import pytest
 
 from launchkit.errors import UserError
-from launchkit.stock.rviz2.config import Display, load_config, parse_config
+from launchkit.stock.rviz2.config import Display, default_config, load_config, parse_config
 
 SHIPPED = Path(__file__).parents[2] / "config" / "robot.rviz"  # robot_wheel's
 
@@ -99,5 +99,44 @@ def test_port_default_comes_from_the_environment(monkeypatch: pytest.MonkeyPatch
     assert parse_args([]).port == 9100
     assert parse_args(["--port", "9200"]).port == 9200
     monkeypatch.setenv(PORT_ENV, "http")
-    with pytest.raises(UserError, match="LAUNCHKIT_FOXGLOVE_PORT is 'http'"):
+    with pytest.raises(UserError, match="LAUNCHKIT_VIEWER_PORT is 'http'"):
         parse_args([])
+
+
+def test_global_options_and_display_options_for_the_page() -> None:
+    text = CONFIG.replace(
+        "    Fixed Frame: odom\n",
+        "    Fixed Frame: odom\n    Frame Rate: 15\n    Background Color: 10; 20; 30\n",
+    ).replace(
+        "          Name: LaserScan\n", "          Name: LaserScan\n          Size (m): 0.05\n"
+    )
+    page = parse_config(text).to_page()
+    assert (page["fixedFrame"], page["frameRate"], page["background"]) == (
+        "odom",
+        15.0,
+        [10, 20, 30],
+    )
+    scan = next(d for d in page["displays"] if d["class"] == "LaserScan")
+    assert scan == {
+        "class": "LaserScan",
+        "name": "LaserScan",
+        "enabled": True,
+        "topic": "/scan",
+        "options": {"Size (m)": 0.05},
+    }
+
+
+def test_bad_global_options_fall_back_to_rviz_defaults() -> None:
+    text = CONFIG.replace(
+        "    Fixed Frame: odom\n",
+        "    Fixed Frame: odom\n    Frame Rate: 0\n    Background Color: red\n",
+    )
+    config = parse_config(text)
+    assert (config.frame_rate, config.background) == (30.0, (48, 48, 48))
+
+
+def test_without_a_config_the_view_shows_grid_robot_and_tf() -> None:
+    config = default_config()
+    assert config.fixed_frame == "map"
+    assert [d.class_name.rsplit("/", 1)[1] for d in config.displays] == ["Grid", "RobotModel", "TF"]
+    assert config.topics == ["/robot_description"]

@@ -121,9 +121,11 @@ def test_jsp_waits_for_the_description_topic(processes: Processes, probe: Any) -
     assert "wheel_left_joint" in list(states[0].name)
 
 
-def test_jsp_gui_is_a_headless_joint_state_publisher(
+def test_jsp_gui_publishes_the_positions_of_its_sliders(
     tmp_path: Path, processes: Processes, probe: Any
 ) -> None:
+    """The GUI's sliders live in the viewer page, which publishes their positions on the node's
+    ~/slider_positions; the node puts them on /joint_states as its Tk window would."""
     proc = processes.start(
         "launchkit.cli",
         "exec",
@@ -138,10 +140,22 @@ def test_jsp_gui_is_a_headless_joint_state_publisher(
     spin_until(probe, lambda: bool(states), "/joint_states from joint_state_publisher_gui")
     assert list(states[0].position) == [0.0, 0.0, 0.0]
     assert "joint_state_publisher_gui" in probe.get_node_names()
+    sliders = probe.create_publisher(JointState, "/joint_state_publisher_gui/slider_positions", 10)
+    moved = JointState(name=["wheel_left_joint"], position=[1.25])
+    spin_until(
+        probe,
+        lambda: (
+            bool(states)
+            and dict(zip(states[-1].name, states[-1].position, strict=True))["wheel_left_joint"]
+            == 1.25
+        ),
+        "/joint_states with the slider's wheel_left_joint position 1.25",
+        each=lambda: sliders.publish(moved),
+    )
     os.killpg(proc.pid, signal.SIGINT)
     _, err = proc.communicate(timeout=15)
     assert proc.returncode == 0, err
-    assert "no slider window" in err
+    assert "/joint_state_publisher_gui/slider_positions" in err
 
 
 SMALL = (

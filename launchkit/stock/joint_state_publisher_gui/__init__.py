@@ -1,8 +1,5 @@
-"""The ``joint_state_publisher_gui`` stand-in: joint_state_publisher without the slider window.
-
-launchkit has no GUI toolkit; the executable publishes the same ``/joint_states`` as
-``joint_state_publisher`` (``zeros.<joint>`` and ``source_list`` set positions) and says so.
-"""
+"""The ``joint_state_publisher_gui`` stand-in: joint_state_publisher whose sliders are in the
+browser viewer the ``rviz2`` stand-in serves (see its node module)."""
 
 from __future__ import annotations
 

@@ -1,4 +1,11 @@
-"""The ``joint_state_publisher_gui`` executable: a headless joint_state_publisher."""
+"""The ``joint_state_publisher_gui`` executable: joint_state_publisher with sliders in the viewer.
+
+launchkit has no window toolkit: the sliders are in the browser viewer that the ``rviz2``
+stand-in serves. The node subscribes to ``~/slider_positions`` (sensor_msgs/JointState); the
+viewer shows one slider per moving joint while this node runs and publishes their positions
+there, and the node publishes them on ``/joint_states`` with the rest of its joints, as the Tk
+window of ROS's node would. Without a viewer it publishes what joint_state_publisher does.
+"""
 
 from __future__ import annotations
 
@@ -6,18 +13,31 @@ import sys
 
 import launchkit.ros as ros
 from launchkit.stock import _entry
-from launchkit.stock.joint_state_publisher import node as jsp
+from launchkit.stock.joint_state_publisher.node import JointStatePublisher
 
-NOTE = (
-    "no slider window in launchkit: publishing joint states as joint_state_publisher does "
-    "(set positions with zeros.<joint> or a source_list topic)"
-)
+#: Where the viewer's sliders publish (relative to the node: /joint_state_publisher_gui/...).
+SLIDER_TOPIC = "~/slider_positions"
 
 
 def main(argv: list[str]) -> int:
-    """Say there are no sliders, then run joint_state_publisher under this node's name."""
-    ros.get_logger("joint_state_publisher_gui").warn(NOTE)
-    return jsp.main(argv, name="joint_state_publisher_gui")
+    """Run joint_state_publisher under this node's name, taking slider positions too."""
+    from launchkit.ros.msgs.sensor_msgs.msg import JointState
+
+    ros.init(argv)
+    node = ros.Node(
+        "joint_state_publisher_gui", automatically_declare_parameters_from_overrides=True
+    )
+    try:
+        publisher = JointStatePublisher(node)
+        sliders = node.create_subscription(JointState, SLIDER_TOPIC, publisher.on_source, 10)
+        node.get_logger().info(
+            f"joint sliders: open the viewer (rviz2) page; positions arrive on {sliders.topic}"
+        )
+        ros.spin(node)
+    finally:
+        node.destroy_node()
+        ros.shutdown()
+    return 0
 
 
 if __name__ == "__main__":

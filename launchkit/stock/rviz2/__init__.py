@@ -1,4 +1,4 @@
-"""The ``rviz2`` stand-in: a Foxglove WebSocket server carrying every topic of the ROS graph."""
+"""The ``rviz2`` stand-in: a browser viewer of the robot and a Foxglove server, on one port."""
 
 from __future__ import annotations
 

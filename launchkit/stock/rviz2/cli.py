@@ -1,4 +1,9 @@
-"""rviz2's command line: ``[-d CONFIG.rviz] [-f FRAME] [--port N] [--ros-args ... [--]]``."""
+"""rviz2's command line: ``[-d CONFIG.rviz] [-f FRAME] [--port N] [--address A]
+[--allow-origin URL ...] [--ros-args ... [--]]``.
+
+The options give the defaults of the node's parameters ``port``, ``address`` and
+``allowed_origins``; a parameter set with ``-p`` or ``<param>`` wins.
+"""
 
 from __future__ import annotations
 
@@ -8,8 +13,11 @@ from pathlib import Path
 from typing import NoReturn
 
 # PORT_ENV sets the default port, e.g. for launch files whose rviz2 line cannot be changed.
-from launchkit.envvars import FOXGLOVE_PORT as PORT_ENV
+from launchkit.envvars import VIEWER_PORT as PORT_ENV
 from launchkit.errors import UserError
+
+DEFAULT_PORT = 8765
+DEFAULT_ADDRESS = "127.0.0.1"
 
 
 class _Parser(argparse.ArgumentParser):
@@ -30,14 +38,28 @@ def parse_args(argv: list[str]) -> argparse.Namespace:
     parser.add_argument(
         "--port",
         type=int,
-        default=_default_port(),
-        help=f"WebSocket port (default ${PORT_ENV} or 8765)",
+        default=default_port(),
+        help=f"viewer and Foxglove WebSocket port (default ${PORT_ENV} or {DEFAULT_PORT}; "
+        "0 picks a free one)",
+    )
+    parser.add_argument(
+        "--address",
+        default=DEFAULT_ADDRESS,
+        help=f"address to listen on (default {DEFAULT_ADDRESS}: this machine only)",
+    )
+    parser.add_argument(
+        "--allow-origin",
+        action="append",
+        default=[],
+        metavar="URL",
+        help="also accept WebSocket connections from pages of this origin (repeatable; * for any)",
     )
     return parser.parse_args(own)
 
 
-def _default_port() -> int:
-    value = os.environ.get(PORT_ENV, "8765")
+def default_port() -> int:
+    """``$LAUNCHKIT_VIEWER_PORT``, or 8765."""
+    value = os.environ.get(PORT_ENV, str(DEFAULT_PORT))
     if not value.isdigit() or not 0 <= int(value) <= 65535:
         raise UserError(f"{PORT_ENV} is {value!r}", expected="a port number, 0 to 65535")
     return int(value)

@@ -1,106 +1,60 @@
 """The ``rviz2`` executable: ``rviz2 [-d CONFIG.rviz] [-f FRAME] [--port N] [--ros-args ...]``.
 
-There is no 3D window: the node serves every topic of the ROS graph over a Foxglove WebSocket
-on 127.0.0.1 (port 8765 unless ``--port``) and prints how to open it in the Foxglove app. The
-config's fixed frame and display topics are printed so the same view can be set up there.
+There is no 3D window of its own: the node serves a viewer page to the browser
+(``http://127.0.0.1:8765/``: the robot model, TF, laser scans, odometry, camera images, the
+topic list, driving keys and joint sliders, laid out as the ``-d`` config says) and the same
+topics to Foxglove apps over the Foxglove WebSocket protocol, on one loopback port.
+
+Parameters (defaults from the command line): ``port`` (8765, or ``$LAUNCHKIT_VIEWER_PORT``; 0
+picks a free port), ``address`` (``127.0.0.1``: this machine only) and ``allowed_origins``
+(web pages of other origins allowed to connect; ``*`` for any). Under ``launchkit run`` the
+``viewer: http://...`` line goes to the launcher's console whatever the node's ``output``.
 """
 
 from __future__ import annotations
 
 import sys
-from dataclasses import dataclass
 from typing import Any
 
 import launchkit.ros as ros
+from launchkit.errors import UserError
+from launchkit.runtime.supervisor_client import SupervisorClient, SupervisorError
 from launchkit.stock import _entry
+from launchkit.stock.rviz2.access import AccessPolicy
 from launchkit.stock.rviz2.cli import parse_args
-from launchkit.stock.rviz2.config import RvizConfig, load_config
-from launchkit.stock.rviz2.relay import FoxgloveRelay
-
-#: How often the graph is looked at for topics that appeared.
-DISCOVERY_PERIOD_SEC = 0.5
-
-
-@dataclass(frozen=True)
-class Endpoint:
-    """A topic as its publishers offer it."""
-
-    topic: str
-    type_name: str
-    latched: bool
-    best_effort: bool
+from launchkit.stock.rviz2.config import RvizConfig, default_config, load_config
+from launchkit.stock.rviz2.hub import Hub
+from launchkit.stock.rviz2.ros_link import RosLink
+from launchkit.stock.rviz2.server import ViewerServer
 
 
-def publisher_endpoints(node: ros.Node) -> list[Endpoint]:
-    """Every topic with a publisher in the graph, with the QoS a subscriber must match."""
-    found: dict[str, Endpoint] = {}
-    for token in node.context.graph.tokens("MP"):
-        qos = token.qos
-        latched = qos is not None and qos.durability == ros.DurabilityPolicy.TRANSIENT_LOCAL
-        best_effort = qos is not None and qos.reliability == ros.ReliabilityPolicy.BEST_EFFORT
-        seen = found.get(token.topic)
-        if seen is not None:
-            latched = latched or seen.latched
-            best_effort = best_effort or seen.best_effort
-        found[token.topic] = Endpoint(token.topic, token.type_name, latched, best_effort)
-    return sorted(found.values(), key=lambda e: e.topic)
+def _param(node: ros.Node, name: str, default: Any, expected: str) -> Any:
+    """A parameter's value (declared with ``default``), checked to have ``default``'s type."""
+    try:
+        value = (
+            node.get_parameter(name).value
+            if node.has_parameter(name)
+            else node.declare_parameter(name, default).value
+        )
+    except ros.InvalidParameterTypeException as error:
+        raise UserError(str(error), expected=expected) from None
+    if isinstance(default, list):
+        ok = isinstance(value, (list, tuple)) and all(isinstance(v, str) for v in value)
+    else:
+        ok = type(value) is type(default)
+    if not ok:
+        raise UserError(f"parameter {name!r} is {value!r}", expected=expected)
+    return list(value) if isinstance(default, list) else value
 
 
-class Rviz2:
-    """The node: follows the graph and relays each topic's CDR bytes to Foxglove clients."""
-
-    def __init__(self, node: ros.Node, relay: FoxgloveRelay) -> None:
-        self.node = node
-        self.relay = relay
-        self.relayed: set[str] = set()
-        self.discover()
-        node.create_timer(DISCOVERY_PERIOD_SEC, self.discover)
-
-    def discover(self) -> None:
-        """Subscribe to the topics that appeared since the last look."""
-        from launchkit.ros.msgs import get_message, message_definition
-
-        for endpoint in publisher_endpoints(self.node):
-            if endpoint.topic in self.relayed:
-                continue
-            try:
-                msg_type = get_message(endpoint.type_name)
-                definition = message_definition(endpoint.type_name)
-            except Exception as exc:  # a type this installation does not know: skip it, once
-                self.node.get_logger().warn(
-                    f"not relaying {endpoint.topic}: unknown type {endpoint.type_name} ({exc})"
-                )
-                self.relayed.add(endpoint.topic)
-                continue
-            self.relay.add_topic(endpoint.topic, endpoint.type_name, definition, endpoint.latched)
-            qos = ros.QoSProfile(
-                depth=10,
-                reliability=ros.ReliabilityPolicy.BEST_EFFORT
-                if endpoint.best_effort
-                else ros.ReliabilityPolicy.RELIABLE,
-                durability=ros.DurabilityPolicy.TRANSIENT_LOCAL
-                if endpoint.latched
-                else ros.DurabilityPolicy.VOLATILE,
-            )
-            self.node.create_subscription(
-                msg_type, endpoint.topic, self._forward(endpoint.topic), qos, raw=True
-            )
-            self.relayed.add(endpoint.topic)
-            self.node.get_logger().debug(f"relaying {endpoint.topic} ({endpoint.type_name})")
-
-    def _forward(self, topic: str) -> Any:
-        def forward(payload: bytes) -> None:
-            self.relay.publish(topic, payload)
-
-        return forward
-
-
-def connect_lines(relay: FoxgloveRelay, config: RvizConfig) -> list[str]:
-    """What the node prints so a user can connect a viewer."""
+def connect_lines(server: ViewerServer, config: RvizConfig) -> list[str]:
+    """What the node prints (its own output) so a user can connect Foxglove too."""
     lines = [
-        f"Foxglove WebSocket server on {relay.url} (every ROS topic, ros2msg schemas, CDR)",
-        f"  open in a browser: {relay.app_url()}",
-        f"  or in Foxglove desktop: Open connection -> Foxglove WebSocket -> {relay.url}",
+        f"Foxglove WebSocket on {server.ws_url} (every ROS topic, ros2msg schemas, CDR; "
+        "subprotocols foxglove.websocket.v1 and foxglove.sdk.v1)",
+        f"  Foxglove desktop or Lichtblick: Open connection -> Foxglove WebSocket -> "
+        f"{server.ws_url}",
+        "  web apps of other sites (app.foxglove.dev) need their origin in allowed_origins",
         f"  fixed frame: {config.fixed_frame}",
     ]
     if config.topics:
@@ -108,26 +62,63 @@ def connect_lines(relay: FoxgloveRelay, config: RvizConfig) -> list[str]:
     return lines
 
 
+def announce(line: str) -> None:
+    """Print ``line`` on the launcher's console when run by ``launchkit run`` (whatever this
+    node's ``output``), else on stdout."""
+    try:
+        client = SupervisorClient.from_environment()
+    except OSError:
+        client = None
+    if client is not None:
+        try:
+            with client:
+                client.announce(line)
+            return
+        except SupervisorError:
+            pass  # an older launcher without announcements: print it ourselves
+    print(line, flush=True)
+
+
 def main(argv: list[str]) -> int:
     """Serve until shutdown (Ctrl-C or SIGTERM)."""
     args = parse_args(argv[1:])
-    config = load_config(args.display_config) if args.display_config else RvizConfig()
+    config = load_config(args.display_config) if args.display_config else default_config()
     if args.fixed_frame:
-        config = RvizConfig(args.fixed_frame, config.displays)
-    relay = FoxgloveRelay(port=args.port)
+        config = RvizConfig(args.fixed_frame, config.displays, config.frame_rate, config.background)
+    ros.init(argv)
+    node = ros.Node("rviz2")
+    server: ViewerServer | None = None
+    link = RosLink(node)
     try:
-        ros.init(argv)
-        node = ros.Node("rviz2")
-        try:
-            Rviz2(node, relay)
-            for line in connect_lines(relay, config):  # for the user: plain stdout, like rviz2's
-                print(line, flush=True)
-            ros.spin(node)
-        finally:
-            node.destroy_node()
-            ros.shutdown()
+        port = _param(node, "port", args.port, "a port number, 0 to 65535")
+        address = _param(node, "address", args.address, "an IP address such as 127.0.0.1")
+        origins = _param(
+            node, "allowed_origins", list(args.allow_origin), "a list of origins (strings)"
+        )
+        if not 0 <= port <= 65535:
+            raise UserError(f"parameter 'port' is {port}", expected="0 to 65535")
+        policy = AccessPolicy(address, origins)
+        hub = Hub(link)
+        logger = node.get_logger()
+        server = ViewerServer(
+            hub, policy, port, {"config": config.to_page()}, lambda text: logger.warn(text)
+        )
+        server.start()
+        link.connect(hub, server)
+        announce(f"viewer: {server.url}")
+        for line in connect_lines(server, config):  # after the announcement: tests rely on it
+            print(line, flush=True)
+        if not policy.loopback_only:
+            node.get_logger().warn(
+                f"serving on {address}: other machines can see and drive the robot"
+            )
+        ros.spin(node)
     finally:
-        relay.close()
+        link.close()
+        if server is not None:
+            server.close()
+        node.destroy_node()
+        ros.shutdown()
     return 0
 
 

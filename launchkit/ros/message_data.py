@@ -1,4 +1,5 @@
-"""Messages to and from YAML-shaped data, as ``ros2 topic echo`` / ``topic pub`` do."""
+"""Messages to and from plain data and YAML, as ``ros2 topic echo`` / ``topic pub`` do (and as
+the viewer sends them to its page): rosidl_runtime_py's ``convert`` and ``set_message``."""
 
 from __future__ import annotations
 
