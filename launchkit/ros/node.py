@@ -260,13 +260,13 @@ class Node:
         self,
         msg_type: Any,
         topic: str,
-        callback: Callable[[Any], Any],
+        callback: Callable[..., Any],
         qos_profile: QoSProfile | int,
         *,
         raw: bool = False,
         **_: Any,
     ) -> Subscription:
-        """Call ``callback(msg)`` (in the spinning thread) for each message on ``topic``."""
+        """Call ``callback(msg)`` or ``callback(msg, info)`` for each message on ``topic``."""
         sub = Subscription(self, msg_type, topic, callback, as_profile(qos_profile), raw)
         self._entities.append(sub)
         return sub

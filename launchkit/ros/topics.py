@@ -2,10 +2,11 @@
 
 from __future__ import annotations
 
+import inspect
 import threading
 import time
 from collections.abc import Callable
-from typing import TYPE_CHECKING, Any
+from typing import TYPE_CHECKING, Any, TypedDict
 
 import zenoh
 from zenoh import ext
@@ -23,6 +24,40 @@ from launchkit.ros.qos import (
 
 if TYPE_CHECKING:
     from launchkit.ros.node import Node
+
+
+class MessageInfo(TypedDict):
+    """What a two-argument subscription callback gets besides the message (rclpy's keys).
+
+    Timestamps are nanoseconds since the epoch: ``source_timestamp`` when the publisher sent it
+    (from rmw_zenoh's attachment; 0 if none), ``received_timestamp`` when this process's Zenoh
+    session got it. ``publisher_gid`` (rmw's ``publisher_gid``, not in rclpy's dict) tells
+    whose ``publication_sequence_number`` it is.
+    """
+
+    source_timestamp: int
+    received_timestamp: int
+    publication_sequence_number: int
+    reception_sequence_number: int
+    publisher_gid: bytes
+
+
+def _wants_message_info(callback: Callable[..., Any]) -> bool:
+    """Whether ``callback`` takes ``(msg, message_info)`` rather than ``(msg)`` (rclpy's test)."""
+    try:
+        signature = inspect.signature(callback)
+    except (TypeError, ValueError):  # a builtin without a signature: the one-argument form
+        return False
+    try:
+        signature.bind(object())
+        return False
+    except TypeError:
+        pass
+    try:
+        signature.bind(object(), object())
+        return True
+    except TypeError:
+        return False
 
 
 class _Entity:
@@ -182,7 +217,11 @@ class Publisher(_Entity):
 
 
 class Subscription(_Entity):
-    """Calls ``callback(msg)`` in the spinning thread for every message on a topic."""
+    """Calls ``callback(msg)`` in the spinning thread for every message on a topic.
+
+    As in rclpy, a callback taking two arguments gets ``(msg, message_info)``
+    (:class:`MessageInfo`); with ``raw=True`` the message is its CDR ``bytes``, never decoded.
+    """
 
     KIND = "MS"
 
@@ -191,13 +230,15 @@ class Subscription(_Entity):
         node: Node,
         msg_type: Any,
         topic: str,
-        callback: Callable[[Any], Any],
+        callback: Callable[..., Any],
         qos: QoSProfile,
         raw: bool = False,
     ) -> None:
         super().__init__(node, msg_type, topic, qos)
         self.callback = callback
         self.raw = raw
+        self._with_info = _wants_message_info(callback)
+        self._received = 0
         self._blocked_gids: set[bytes] = set()
         session = node.context.session
         reliable = qos.reliability == ReliabilityPolicy.RELIABLE
@@ -237,32 +278,49 @@ class Subscription(_Entity):
 
     def _on_sample(self, sample: zenoh.Sample) -> None:
         # zenoh's thread: copy out and hand over to the spinning thread
+        received = time.time_ns()
         attachment = sample.attachment
         self.node._work.put(
             (
                 self._deliver,
-                (sample.payload.to_bytes(), None if attachment is None else attachment.to_bytes()),
+                (
+                    sample.payload.to_bytes(),
+                    None if attachment is None else attachment.to_bytes(),
+                    received,
+                ),
             )
         )
 
-    def _deliver(self, payload: bytes, attachment: bytes | None) -> None:
-        if self._blocked_gids:
-            decoded = decode_attachment(attachment)
-            if decoded is not None and decoded.gid in self._blocked_gids:
+    def _deliver(self, payload: bytes, attachment: bytes | None, received: int = 0) -> None:
+        wanted = self._blocked_gids or self._with_info
+        decoded = decode_attachment(attachment) if wanted else None
+        if decoded is not None and decoded.gid in self._blocked_gids:
+            return
+        message: Any = payload
+        if not self.raw:
+            try:
+                message = deserialize(payload, self.type_name)
+            except Exception as exc:
+                self.node.get_logger().error(
+                    f"dropped a message on '{self.topic_name}' that is not a valid "
+                    f"{self.type_name}: {exc}",
+                    throttle_duration_sec=5.0,
+                )
                 return
-        if self.raw:
-            self.callback(payload)
+        if not self._with_info:
+            self.callback(message)
             return
-        try:
-            msg = deserialize(payload, self.type_name)
-        except Exception as exc:
-            self.node.get_logger().error(
-                f"dropped a message on '{self.topic_name}' that is not a valid "
-                f"{self.type_name}: {exc}",
-                throttle_duration_sec=5.0,
-            )
-            return
-        self.callback(msg)
+        self._received += 1
+        self.callback(
+            message,
+            MessageInfo(
+                source_timestamp=decoded.timestamp_ns if decoded else 0,
+                received_timestamp=received,
+                publication_sequence_number=decoded.sequence if decoded else 0,
+                reception_sequence_number=self._received,
+                publisher_gid=decoded.gid if decoded else b"",
+            ),
+        )
 
     def destroy(self) -> None:
         """Undeclare the subscriber and its token."""
