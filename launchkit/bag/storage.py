@@ -121,7 +121,14 @@ class BagWriter:
         self._file_bytes = 0
         self._flushed_chunks = 0
         self._last_flush = time.monotonic()
-        self._open_file()
+        # the storage is opened by the first call of the writing thread: sqlite3 connections
+        # belong to the thread that made them
+
+    def _current(self) -> McapWriter | Sqlite3Writer:
+        if self._storage is None:
+            self._open_file()
+        assert self._storage is not None
+        return self._storage
 
     # files ------------------------------------------------------------------------------
     def _open_file(self) -> None:
@@ -188,22 +195,23 @@ class BagWriter:
             owner=None,
         )
         topic = BagTopic(record, connection)
-        assert self._storage is not None
+        storage = self._current()
         new_type = all(t.record.type != record.type for t in self.topics)
         self.topics.append(topic)
         self.summary.topics.append(record)
         if new_type:
-            self._storage.add_msgtype(connection)
-        self._storage.add_connection(connection, yaml_qos(topic))
+            storage.add_msgtype(connection)
+        storage.add_connection(connection, yaml_qos(topic))
         return topic
 
     def write(self, topic: BagTopic, timestamp: int, data: bytes) -> None:
         """Write one serialized message received at ``timestamp`` (ns since the epoch)."""
-        assert self._file is not None
-        if self._file.count and self._split_due(timestamp):
+        storage = self._current()
+        if self._file is not None and self._file.count and self._split_due(timestamp):
             self.split()
-        storage, record = self._storage, self._file
-        assert storage is not None and record is not None
+            storage = self._current()
+        record = self._file
+        assert record is not None
         if self.options.compression_mode == "message":
             data = zstd.compress(data)
         storage.write(topic.connection, timestamp, data)
@@ -246,6 +254,7 @@ class BagWriter:
 
     def close(self) -> BagSummary:
         """Finish the last file, wait for file compression, write ``metadata.yaml``."""
+        self._current()  # a bag without messages still has its (empty) storage file
         self._close_file()
         for worker in self._compressing:
             worker.join()

@@ -178,7 +178,7 @@ def probe(router: str, name: str = "bag_probe", **node_args: Any) -> Iterator[Pr
 
 def sample(type_name: str, seed: int = 1) -> Any:
     """A message of ``type_name`` with every field set to a value other than its default."""
-    consts, fields = typestore().fielddefs[type_name]
+    _, fields = typestore().fielddefs[type_name]
     cls = get_message(type_name)
     values = {name: _value(desc, seed + i) for i, (name, desc) in enumerate(fields)}
     return cls(**values)

@@ -10,6 +10,8 @@ from pathlib import Path
 from typing import Any
 
 import pexpect
+from launchkit.ros.msgs.rosgraph_msgs.msg import Clock
+from launchkit.ros.msgs.std_msgs.msg import String
 from rosbags.rosbag2 import StoragePlugin, Writer
 from rosbags.typesys import Stores, get_types_from_msg, get_typestore
 
@@ -18,8 +20,6 @@ from launchkit.bag.qos import to_bag_qos
 from launchkit.bag.storage import BagWriter, WriterOptions
 from launchkit.ros import DurabilityPolicy, Parameter, QoSProfile, ReliabilityPolicy
 from launchkit.ros.msgs import message_definition, serialize, type_hash
-from launchkit.ros.msgs.rosgraph_msgs.msg import Clock
-from launchkit.ros.msgs.std_msgs.msg import String
 from launchkit.ros.qos import qos_profile_latched
 from tests.bag.helpers import bag_process, launchkit_env, probe, run_bag, wait_for
 
@@ -29,7 +29,9 @@ STRING = "std_msgs/msg/String"
 LATCHED = QoSProfile(depth=1, durability=DurabilityPolicy.TRANSIENT_LOCAL)
 
 
-def make_bag(path: Path, messages: list[tuple[str, int, Any]], latched: set[str] = set()) -> Path:
+def make_bag(
+    path: Path, messages: list[tuple[str, int, Any]], latched: frozenset[str] = frozenset()
+) -> Path:
     """A bag of ``(topic, time, message)``; topics in ``latched`` recorded as transient local."""
     writer = BagWriter(path, WriterOptions())
     topics: dict[str, Any] = {}
@@ -106,7 +108,7 @@ def test_transient_local_topics_stay_latched_for_late_subscribers(
 ) -> None:
     messages = [("/latched", T0, String(data="description"))]
     messages += [("/tick", T0 + n * NS // 10, String(data=str(n))) for n in range(1, 25)]
-    bag = make_bag(tmp_path / "bag", messages, latched={"/latched"})
+    bag = make_bag(tmp_path / "bag", messages, latched=frozenset({"/latched"}))
     with probe(router) as listener, bag_process(router, "play", str(bag)) as player:
         early = collect(listener.node, "/latched", LATCHED)
         ticks = collect(listener.node, "/tick")

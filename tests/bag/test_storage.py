@@ -6,6 +6,7 @@ from pathlib import Path
 
 import pytest
 import yaml
+from launchkit.ros.msgs.std_msgs.msg import String
 from mcap.reader import make_reader
 from rosbags.rosbag2 import Reader
 
@@ -13,7 +14,6 @@ from launchkit.bag.metadata import BagError, TopicRecord
 from launchkit.bag.qos import to_bag_qos
 from launchkit.bag.storage import BagWriter, WriterOptions
 from launchkit.ros.msgs import deserialize, message_definition, serialize, type_hash
-from launchkit.ros.msgs.std_msgs.msg import String
 from launchkit.ros.qos import qos_profile_latched
 
 NS = 1_000_000_000

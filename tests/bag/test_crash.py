@@ -1,0 +1,91 @@
+"""A recorder killed with SIGKILL leaves a bag that ``launchkit bag reindex`` makes readable,
+with every message up to the last flush; an intact bag reindexes to the metadata it had."""
+
+from __future__ import annotations
+
+import sqlite3
+from collections.abc import Callable
+from pathlib import Path
+
+import pytest
+import yaml
+from launchkit.ros.msgs.std_msgs.msg import String
+from rosbags.rosbag2 import Reader
+
+from launchkit.bag.reindex import reindex
+from launchkit.bag.storage import WriterOptions
+from launchkit.ros.msgs import deserialize
+from tests.bag.helpers import bag_process, probe, run_bag, wait_for
+from tests.bag.test_storage import NS, write_bag
+
+
+def _grown(path: Path, size: int) -> bool:
+    return path.exists() and path.stat().st_size > size
+
+
+def _committed_rows(path: Path) -> int:
+    try:
+        with sqlite3.connect(f"file:{path}?mode=ro", uri=True) as db:
+            return int(db.execute("SELECT count(*) FROM messages").fetchone()[0])
+    except sqlite3.Error:  # not created yet, or locked by a commit right now
+        return 0
+
+
+CASES: dict[str, tuple[list[str], Callable[[Path], bool], list[str]]] = {
+    # split after 1 s, files compressed: one closed .zstd file and one cut mid-write
+    "mcap-split-zstd": (
+        ["--storage-preset-profile", "zstd_fast", "-d", "1", "--compression-mode", "file"],
+        lambda bag: (bag / "bag_0.mcap.zstd").exists() and _grown(bag / "bag.mcap", 1000),
+        ["bag_0.mcap.zstd", "bag_1.mcap.zstd"],
+    ),
+    "sqlite3": (
+        ["-s", "sqlite3"],
+        lambda bag: _committed_rows(bag / "bag.db3") > 0,
+        ["bag_0.db3"],
+    ),
+}
+
+
+@pytest.mark.parametrize("case", list(CASES))
+def test_a_killed_recorders_bag_reads_after_reindex(router: str, tmp_path: Path, case: str) -> None:
+    options, flushed, files = CASES[case]
+    bag = tmp_path / "bag"
+    sent = 0
+    with probe(router, "counter") as counter:
+        publisher = counter.node.create_publisher(String, "/count", 100)
+        with bag_process(router, "record", "/count", "-o", str(bag), *options) as recorder:
+            recorder.wait_line("Subscribed to topic '/count'")
+            wait_for(lambda: publisher.get_subscription_count() == 1, 10, "the recorder's sub")
+
+            def publish_until_flushed() -> bool:
+                nonlocal sent
+                publisher.publish(String(data=str(sent)))
+                sent += 1
+                return flushed(bag)
+
+            wait_for(publish_until_flushed, 30, f"a flush to disk in {sorted(bag.iterdir())}")
+            recorder.kill()
+    assert not (bag / "metadata.yaml").exists()
+    assert run_bag("play", str(bag)).returncode == 2, "unreadable before reindex"
+
+    result = run_bag("reindex", str(bag))
+    assert result.returncode == 0, result.stdout + result.stderr
+    assert sorted(p.name for p in bag.iterdir()) == sorted([*files, "metadata.yaml"])
+    with Reader(bag) as reader:
+        texts = [int(deserialize(d, c.msgtype).data) for c, _, d in reader.messages()]
+        assert reader.message_count == len(texts)
+    assert texts, "the flushed messages are in the bag"
+    assert texts == list(range(texts[0], texts[0] + len(texts))), "a prefix, without holes"
+    assert texts[-1] < sent
+    info = run_bag("info", str(bag))
+    assert info.returncode == 0 and f"Messages:          {len(texts)}" in info.stdout
+
+
+def test_an_intact_bag_reindexes_to_the_same_metadata(tmp_path: Path) -> None:
+    bag = tmp_path / "bag"
+    write_bag(bag, WriterOptions(max_bag_duration=NS, storage_preset_profile="zstd_fast"))
+    before = yaml.safe_load((bag / "metadata.yaml").read_text())
+    (bag / "metadata.yaml").unlink()
+    reindex(bag, log=lambda _: None)
+    after = yaml.safe_load((bag / "metadata.yaml").read_text())
+    assert after == before
