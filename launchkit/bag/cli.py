@@ -9,6 +9,7 @@ from pathlib import Path
 from launchkit.bag.metadata import BagError
 from launchkit.bag.selection import TopicSelection
 from launchkit.bag.storage import COMPRESSION_MODES, PRESETS, STORAGES, WriterOptions
+from launchkit.ros.names import RemapRule
 from launchkit.ros.session import ROUTER_ENV
 
 _NS = 1_000_000_000
@@ -140,6 +141,8 @@ def _record(args: argparse.Namespace) -> int:
             raise BagError(f"--custom-data {item!r}", expected="KEY=VALUE")
         custom[key] = value
     output = args.output or datetime.datetime.now().strftime("rosbag2_%Y_%m_%d-%H_%M_%S")
+    if Path(output).exists():
+        raise BagError(f"Output folder '{output}' already exists.", expected="a new folder")
     writer = WriterOptions(
         storage=args.storage,
         compression_mode=args.compression_mode,
@@ -177,6 +180,8 @@ def _play(args: argparse.Namespace) -> int:
         exclude_topics=args.exclude_topics,
         include_hidden=True,
     )
+    for rule in args.remap:
+        RemapRule.parse(rule)  # a malformed rule is a mistake found before connecting
     options = PlayOptions(
         selection=selection,
         rate=args.rate,

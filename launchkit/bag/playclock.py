@@ -5,6 +5,7 @@ from __future__ import annotations
 import enum
 import threading
 import time
+from collections.abc import Callable
 
 
 class Wait(enum.Enum):
@@ -22,10 +23,17 @@ class PlaybackClock:
     from where it is. Every change wakes a waiting player at once.
     """
 
-    def __init__(self, start: int, rate: float = 1.0, paused: bool = False) -> None:
+    def __init__(
+        self,
+        start: int,
+        rate: float = 1.0,
+        paused: bool = False,
+        steady: Callable[[], int] = time.monotonic_ns,
+    ) -> None:
+        self._steady = steady  # the steady clock (ns); a test passes its own
         self._cond = threading.Condition()
         self._rate = rate
-        self._anchor = time.monotonic_ns()
+        self._anchor = steady()
         self._anchor_bag = start
         self._paused = paused
         self._step = False
@@ -35,7 +43,7 @@ class PlaybackClock:
     def now(self) -> int:
         """The current bag time."""
         with self._cond:
-            return self._now(time.monotonic_ns())
+            return self._now(self._steady())
 
     def _now(self, steady: int) -> int:
         if self._paused:
@@ -54,7 +62,7 @@ class PlaybackClock:
 
     # changing ---------------------------------------------------------------------------
     def _reanchor(self, bag_time: int | None = None) -> None:
-        steady = time.monotonic_ns()
+        steady = self._steady()
         self._anchor_bag = self._now(steady) if bag_time is None else bag_time
         self._anchor = steady
         self._cond.notify_all()
@@ -121,7 +129,7 @@ class PlaybackClock:
                         return Wait.STEP
                     self._cond.wait()
                     continue
-                steady = time.monotonic_ns()
+                steady = self._steady()
                 remaining = (bag_time - self._now(steady)) / self._rate
                 if remaining <= 0:
                     return Wait.DUE

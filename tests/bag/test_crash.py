@@ -89,3 +89,18 @@ def test_an_intact_bag_reindexes_to_the_same_metadata(tmp_path: Path) -> None:
     reindex(bag, log=lambda _: None)
     after = yaml.safe_load((bag / "metadata.yaml").read_text())
     assert after == before
+
+
+def test_sigterm_closes_the_bag_as_ctrl_c_does(router: str, tmp_path: Path) -> None:
+    bag = tmp_path / "bag"
+    with probe(router, "counter") as counter:
+        publisher = counter.node.create_publisher(String, "/count", 10)
+        with bag_process(router, "record", "-a", "-o", str(bag)) as recorder:
+            recorder.wait_line("Subscribed to topic '/count'")
+            wait_for(lambda: publisher.get_subscription_count() == 1, 10, "the recorder's sub")
+            publisher.publish(String(data="0"))
+            recorder.proc.terminate()
+            assert recorder.wait(30) == 0, recorder.output
+    assert "Recording stopped" in recorder.output
+    with Reader(bag) as reader:
+        assert [c.topic for c in reader.connections] == ["/count"]

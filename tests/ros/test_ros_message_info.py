@@ -6,12 +6,12 @@ import time
 from collections.abc import Callable
 from typing import Any
 
+from launchkit.ros.msgs.std_msgs.msg import String
 from ros_helpers import spin_until
 
 from launchkit.ros import Node, QoSProfile
 from launchkit.ros.context import Context
 from launchkit.ros.msgs import serialize
-from launchkit.ros.msgs.std_msgs.msg import String
 
 
 def test_a_two_argument_callback_gets_the_message_info(
