@@ -32,6 +32,8 @@ from launchkit.ros.topics import Publisher
 
 _NS = 1_000_000_000
 _END_OF_PASS = None  # the reader has given every message of one pass
+#: Bytes the reader may hold ahead besides the message count (1000 camera frames are 2 GB).
+READ_AHEAD_BYTES = 256 * 1024 * 1024
 
 
 @dataclass(frozen=True)
@@ -46,6 +48,15 @@ class PlayOptions:
     delay: float = 0.0  # seconds to wait before playing (each loop)
     start_paused: bool = False
     read_ahead: int = 1000
+
+
+_BUDGET_UNIT = 64 * 1024
+
+
+def _units(data: bytes) -> int:
+    """The read-ahead budget a message takes: at least one unit (tiny ones count too), at most
+    the whole budget (a message larger than it still gets through, alone)."""
+    return min(max(1, len(data) // _BUDGET_UNIT), READ_AHEAD_BYTES // _BUDGET_UNIT)
 
 
 def open_bag(path: Path) -> Reader:
@@ -90,6 +101,7 @@ class Player:
             max(1, options.read_ahead)
         )
         self._stop = threading.Event()
+        self._ahead = threading.Semaphore(READ_AHEAD_BYTES // _BUDGET_UNIT)
         self.start_time = reader.start_time + int(options.start_offset * _NS)
         self.clock = PlaybackClock(self.start_time, options.rate, options.start_paused)
         self.connections, self._publishers = self._make_publishers()
@@ -145,6 +157,13 @@ class Player:
             self._put(_END_OF_PASS)
 
     def _put(self, item: tuple[Publisher, int, bytes] | None) -> bool:
+        units = 0 if item is None else _units(item[2])
+        taken = 0
+        while taken < units:  # the byte budget: wait until the player has used enough
+            if self._ahead.acquire(timeout=0.2):
+                taken += 1
+            elif self._stop.is_set():
+                return False
         while not self._stop.is_set():
             try:
                 self._queue.put(item, timeout=0.2)
@@ -200,6 +219,7 @@ class Player:
                 self.clock.jump(self.start_time)
                 continue
             publisher, timestamp, data = item
+            self._ahead.release(_units(data))
             waited = self.clock.wait_until(timestamp)
             if waited is Wait.STOPPED:
                 return
