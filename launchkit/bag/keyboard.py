@@ -89,7 +89,9 @@ class KeyboardControls:
                     action()
 
     def close(self) -> None:
-        """Stop reading and give the terminal its settings back."""
+        """Stop reading and give the terminal its settings back (once; later calls do nothing)."""
+        if self._wake_write < 0:
+            return
         os.write(self._wake_write, b"x")
         if self._thread is not None:
             self._thread.join(2.0)
@@ -99,8 +101,6 @@ class KeyboardControls:
             except (OSError, termios.error):
                 pass
             self._saved = None
-        for fd in (self._wake_read, self._wake_write):
-            try:
-                os.close(fd)
-            except OSError:
-                pass
+        os.close(self._wake_read)
+        os.close(self._wake_write)
+        self._wake_read = self._wake_write = -1
