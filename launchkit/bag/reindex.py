@@ -133,13 +133,15 @@ def _known_hash(type_name: str) -> str:
 def reindex(path: Path, log: Log = print) -> BagSummary:
     """Rebuild ``path/metadata.yaml``; repairs what a killed recorder left first."""
     storage, files = storage_files(path)
+    if storage == "sqlite3":  # before any rename: the journal is found by the file's name
+        for file in files:
+            if file.name.endswith(STORAGES[storage]):
+                _roll_back(file)
     files = _number_unnumbered(files)
     compressed = any(f.name.endswith(".zstd") for f in files)
     summary = BagSummary(storage=storage)
     for index, file in enumerate(files):
         plain = file.name.endswith(STORAGES[storage])
-        if storage == "sqlite3" and plain:
-            _roll_back(file)
         if storage == "mcap" and plain and not mcap_repair.is_complete(file):
             kept = mcap_repair.repair(file, summary.to_yaml())
             log(f"{file.name}: ended mid-record; kept its {kept} complete messages")
@@ -169,7 +171,11 @@ def reindex(path: Path, log: Log = print) -> BagSummary:
 
 
 def _roll_back(file: Path) -> None:
-    """Open ``file`` read-write once, which rolls back a transaction its writer left open."""
+    """Open ``file`` read-write once, which rolls back a transaction its writer left open.
+
+    A journal still there afterwards is one SQLite found nothing to roll back from (the writer
+    was killed before it wrote its header); it would stay beside the renamed file, so it goes.
+    """
     try:
         connection = sqlite3.connect(file)
         try:
@@ -178,3 +184,4 @@ def _roll_back(file: Path) -> None:
             connection.close()
     except sqlite3.DatabaseError as exc:
         raise BagError(f"{file}: not a readable sqlite3 bag file: {exc}") from None
+    file.with_name(file.name + "-journal").unlink(missing_ok=True)
