@@ -97,6 +97,7 @@ def build_parser() -> argparse.ArgumentParser:
         commands.add_parser(
             name, help=f"ROS {name} tools (see launchkit {name} --help)", add_help=False
         )
+    commands.add_parser("bag", help="record and play rosbag2 bags (see launchkit bag --help)")
     return parser
 
 
@@ -109,6 +110,8 @@ def main(argv: list[str] | None = None) -> int:
         from launchkit.bridge.cli import main as bridge_main
 
         return _guarded(lambda: bridge_main(argv[1:]), debug="--debug" in argv)
+    if argv and argv[0] == "bag":
+        return _guarded(lambda: _bag_command(argv[1:]), debug="--debug" in argv)
     args = build_parser().parse_args(argv)
     if args.command is None:
         build_parser().print_help()
@@ -134,6 +137,12 @@ def _ros_command(command: str, argv: list[str]) -> int:
     from launchkit.ros_cli.main import main as ros_main
 
     return int(ros_main(command, argv))
+
+
+def _bag_command(argv: list[str]) -> int:
+    from launchkit.bag.cli import main as bag_main
+
+    return bag_main(argv)
 
 
 def _dispatch(args: argparse.Namespace) -> int:

@@ -194,7 +194,7 @@ class Node(ParameterMethods, GraphQueries):
         raw: bool = False,
         **_: Any,
     ) -> Subscription:
-        """Call ``callback(msg)`` (in the spinning thread) for each message on ``topic``."""
+        """Call ``callback(msg)`` or ``callback(msg, info)`` for each message on ``topic``."""
         return self._own(
             Subscription(self, msg_type, topic, callback, as_profile(qos_profile), raw)
         )

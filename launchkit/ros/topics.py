@@ -6,7 +6,7 @@ import inspect
 import threading
 import time
 from collections.abc import Callable
-from typing import TYPE_CHECKING, Any
+from typing import TYPE_CHECKING, Any, TypedDict
 
 import zenoh
 from zenoh import ext
@@ -18,6 +18,40 @@ from launchkit.ros.qos import DurabilityPolicy, HistoryPolicy, QoSProfile, Relia
 
 if TYPE_CHECKING:
     from launchkit.ros.node_interface import NodeInterface
+
+
+class MessageInfo(TypedDict):
+    """What a two-argument subscription callback gets besides the message (rclpy's keys).
+
+    Timestamps are nanoseconds since the epoch: ``source_timestamp`` when the publisher sent it
+    (from rmw_zenoh's attachment; 0 if none), ``received_timestamp`` when this process's Zenoh
+    session got it. ``publisher_gid`` (rmw's ``publisher_gid``, not in rclpy's dict) tells
+    whose ``publication_sequence_number`` it is.
+    """
+
+    source_timestamp: int
+    received_timestamp: int
+    publication_sequence_number: int
+    reception_sequence_number: int
+    publisher_gid: bytes
+
+
+def _wants_message_info(callback: Callable[..., Any]) -> bool:
+    """Whether ``callback`` takes ``(msg, message_info)`` rather than ``(msg)`` (rclpy's test)."""
+    try:
+        signature = inspect.signature(callback)
+    except (TypeError, ValueError):  # a builtin without a signature: the one-argument form
+        return False
+    try:
+        signature.bind(object())
+        return False
+    except TypeError:
+        pass
+    try:
+        signature.bind(object(), object())
+        return True
+    except TypeError:
+        return False
 
 
 class _Entity:
@@ -155,7 +189,11 @@ class Publisher(_Entity):
 
 
 class Subscription(_Entity):
-    """Calls ``callback(msg)`` in the spinning thread for every message on a topic."""
+    """Calls ``callback(msg)`` in the spinning thread for every message on a topic.
+
+    As in rclpy, a callback taking two arguments gets ``(msg, message_info)``
+    (:class:`MessageInfo`); with ``raw=True`` the message is its CDR ``bytes``, never decoded.
+    """
 
     KIND = "MS"
 
@@ -171,7 +209,8 @@ class Subscription(_Entity):
         super().__init__(node, msg_type, topic, qos)
         self.callback = callback
         self.raw = raw
-        self._with_info = _takes_message_info(callback)
+        self._with_info = _wants_message_info(callback)
+        self._received = 0
         session = node.context.session
         reliable = qos.reliability == ReliabilityPolicy.RELIABLE
         if qos.durability == DurabilityPolicy.TRANSIENT_LOCAL:
@@ -198,6 +237,7 @@ class Subscription(_Entity):
 
     def _on_sample(self, sample: zenoh.Sample) -> None:
         # zenoh's thread: copy out and hand over to the spinning thread
+        received = time.time_ns()
         attachment = sample.attachment
         self.node.post(
             (
@@ -205,19 +245,19 @@ class Subscription(_Entity):
                 (
                     sample.payload.to_bytes(),
                     None if attachment is None else attachment.to_bytes(),
-                    time.time_ns(),
+                    received,
                 ),
             )
         )
 
-    def _deliver(self, payload: bytes, attachment: bytes | None, received_ns: int) -> None:
+    def _deliver(self, payload: bytes, attachment: bytes | None, received: int = 0) -> None:
         # as rmw_zenoh, every publisher feeds every subscription whatever their QoS (its graph
         # cache does not enforce DDS's compatibility rules)
-        if self.raw:
-            msg: Any = payload
-        else:
+        decoded = decode_attachment(attachment) if self._with_info else None
+        message: Any = payload
+        if not self.raw:
             try:
-                msg = deserialize(payload, self.type_name)
+                message = deserialize(payload, self.type_name)
             except Exception as exc:
                 self.node.get_logger().error(
                     f"dropped a message on '{self.topic_name}' that is not a valid "
@@ -225,44 +265,22 @@ class Subscription(_Entity):
                     throttle_duration_sec=5.0,
                 )
                 return
-        if self._with_info:
-            self.callback(msg, message_info(attachment, received_ns))
-        else:
-            self.callback(msg)
+        if not self._with_info:
+            self.callback(message)
+            return
+        self._received += 1
+        self.callback(
+            message,
+            MessageInfo(
+                source_timestamp=decoded.timestamp_ns if decoded else 0,
+                received_timestamp=received,
+                publication_sequence_number=decoded.sequence if decoded else 0,
+                reception_sequence_number=self._received,
+                publisher_gid=decoded.gid if decoded else b"",
+            ),
+        )
 
     def destroy(self) -> None:
         """Undeclare the subscriber and its token."""
         self._undeclare(self._sub)
         self.node.forget(self)
-
-
-def message_info(attachment: bytes | None, received_ns: int) -> dict[str, Any]:
-    """rclpy's message info for a sample, plus ``publisher_gid`` (the 16 bytes of rmw's
-    ``rmw_message_info_t.publisher_gid``, which rclpy leaves out; empty when unknown)."""
-    decoded = decode_attachment(attachment)
-    return {
-        "source_timestamp": decoded.timestamp_ns if decoded else 0,
-        "received_timestamp": received_ns,
-        "publication_sequence_number": decoded.sequence if decoded else None,
-        "reception_sequence_number": None,
-        "publisher_gid": decoded.gid if decoded else b"",
-    }
-
-
-def _takes_message_info(callback: Callable[..., Any]) -> bool:
-    """Whether ``callback`` wants ``(msg, message_info)`` rather than ``(msg)`` (rclpy's rule)."""
-    try:
-        inspect.signature(callback).bind(object())
-        return False
-    except TypeError:
-        pass
-    except ValueError:  # no signature (a builtin): assume one argument
-        return False
-    try:
-        inspect.signature(callback).bind(object(), object())
-        return True
-    except TypeError:
-        raise TypeError(
-            "a subscription callback takes one argument (the message) or two (the message "
-            "and its message info)"
-        ) from None

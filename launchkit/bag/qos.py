@@ -1,0 +1,130 @@
+"""QoS in bags: launchkit profiles to rosbag2's ``offered_qos_profiles`` and back.
+
+rosbag2 stores, for every topic, the QoS each publisher offered when recording began. The
+recorder subscribes with a profile adapted to those offers, and the player publishes with one
+adapted from them; both rules are rosbag2's (``Rosbag2QoS::adapt_request_to_offers`` and
+``adapt_offer_to_recorded_offers``).
+"""
+
+from __future__ import annotations
+
+from collections.abc import Callable, Sequence
+
+from rosbags.interfaces import (
+    Qos,
+    QosDurability,
+    QosHistory,
+    QosLiveliness,
+    QosReliability,
+    QosTime,
+)
+
+from launchkit.ros.qos import DurabilityPolicy, HistoryPolicy, QoSProfile, ReliabilityPolicy
+
+#: rmw's infinite duration as rosbag2 writes it (deadline, lifespan, liveliness lease).
+INFINITE = QosTime(9223372036, 854775807)
+#: rosbag2's default depth (``rmw_qos_profile_default``) for what it subscribes and publishes.
+DEFAULT_DEPTH = 10
+
+Warn = Callable[[str], object]
+
+_RELIABILITY = {
+    ReliabilityPolicy.RELIABLE: QosReliability.RELIABLE,
+    ReliabilityPolicy.BEST_EFFORT: QosReliability.BEST_EFFORT,
+}
+_DURABILITY = {
+    DurabilityPolicy.TRANSIENT_LOCAL: QosDurability.TRANSIENT_LOCAL,
+    DurabilityPolicy.VOLATILE: QosDurability.VOLATILE,
+}
+_HISTORY = {
+    HistoryPolicy.KEEP_LAST: QosHistory.KEEP_LAST,
+    HistoryPolicy.KEEP_ALL: QosHistory.KEEP_ALL,
+}
+
+
+def to_bag_qos(profile: QoSProfile) -> Qos:
+    """A publisher's profile as one entry of ``offered_qos_profiles``.
+
+    launchkit (like rmw_zenoh's defaults) has no deadline, lifespan or liveliness lease: they
+    are written as rmw's infinite duration, liveliness as automatic.
+    """
+    return Qos(
+        _HISTORY[profile.history],
+        profile.depth,
+        _RELIABILITY[profile.reliability],
+        _DURABILITY[profile.durability],
+        INFINITE,
+        INFINITE,
+        QosLiveliness.AUTOMATIC,
+        INFINITE,
+        False,
+    )
+
+
+def request_for_offers(topic: str, offers: Sequence[QoSProfile], warn: Warn) -> QoSProfile:
+    """The profile the recorder subscribes with, given the publishers' offers.
+
+    Reliable only if every publisher is, transient local only if every publisher is (then the
+    latched samples are recorded too); a mixed topic falls back and says what it loses.
+    """
+    if not offers:
+        return QoSProfile(depth=DEFAULT_DEPTH)
+    reliable = sum(p.reliability == ReliabilityPolicy.RELIABLE for p in offers)
+    latched = sum(p.durability == DurabilityPolicy.TRANSIENT_LOCAL for p in offers)
+    if 0 < reliable < len(offers):
+        warn(
+            f"Some, but not all, publishers on topic '{topic}' are reliable; subscribing "
+            "best effort, so messages of the reliable ones may be dropped"
+        )
+    if 0 < latched < len(offers):
+        warn(
+            f"Some, but not all, publishers on topic '{topic}' are transient local; subscribing "
+            "volatile, so messages published before recording began are not recorded"
+        )
+    return QoSProfile(
+        depth=DEFAULT_DEPTH,
+        reliability=ReliabilityPolicy.RELIABLE
+        if reliable == len(offers)
+        else ReliabilityPolicy.BEST_EFFORT,
+        durability=DurabilityPolicy.TRANSIENT_LOCAL
+        if latched == len(offers)
+        else DurabilityPolicy.VOLATILE,
+    )
+
+
+def _compatibility(qos: Qos) -> tuple[object, ...]:
+    # what rosbag2 compares: every policy but history, depth and lifespan
+    return (
+        qos.reliability,
+        qos.durability,
+        qos.deadline,
+        qos.liveliness,
+        qos.liveliness_lease_duration,
+    )
+
+
+def offer_for_recorded(topic: str, recorded: Sequence[Qos], warn: Warn) -> QoSProfile:
+    """The profile the player publishes ``topic`` with, given the QoS recorded in the bag.
+
+    When every recorded publisher offered the same compatibility policies, the player offers
+    them too (with rosbag2's default history, keep last 10); otherwise rosbag2's default
+    profile (reliable, volatile), with a warning.
+    """
+    if not recorded:
+        return QoSProfile(depth=DEFAULT_DEPTH)
+    if any(_compatibility(q) != _compatibility(recorded[0]) for q in recorded[1:]):
+        warn(
+            f"Not all original publishers on topic '{topic}' offered the same QoS profiles; "
+            "publishing it with the default profile (reliable, volatile)"
+        )
+        return QoSProfile(depth=DEFAULT_DEPTH)
+    first = recorded[0]
+    return QoSProfile(
+        depth=DEFAULT_DEPTH,
+        reliability=ReliabilityPolicy.BEST_EFFORT
+        if first.reliability == QosReliability.BEST_EFFORT
+        else ReliabilityPolicy.RELIABLE,
+        durability=DurabilityPolicy.TRANSIENT_LOCAL
+        if first.durability == QosDurability.TRANSIENT_LOCAL
+        else DurabilityPolicy.VOLATILE,
+    )
