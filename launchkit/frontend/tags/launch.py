@@ -93,12 +93,6 @@ def parse_group(entity: Entity, parser: ActionParser) -> Action:
     scoped = entity.static_bool("scoped", True)
     forwarding = entity.static_bool("forwarding", True)
     keeps = parse_keeps(entity, entity.children())
-    if keeps and forwarding:
-        raise entity.error(
-            '<keep> only applies to a group with forwarding="false"',
-            expected='forwarding="false" on the <group>',
-            attr=None,
-        )
     return Group(parser.parse_actions(entity, skip=("keep",)), scoped, forwarding, keeps)
 
 
