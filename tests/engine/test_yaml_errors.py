@@ -69,6 +69,12 @@ CASES: dict[str, tuple[str, int, int, str]] = {
         56,
         "an item of 'env' in 'executable' is the text 'C=d'",
     ),
+    "empty sub-entity list": (
+        "- executable: {cmd: 'true', env: []}\n",
+        3,
+        29,
+        "key 'env' of 'executable' is an empty list",
+    ),
     "mixed list parameter": (
         "- node: {pkg: p, exec: e, param: [{name: l, value: [1, a]}]}\n",
         3,

@@ -133,6 +133,17 @@ class YamlEntity(Entity):
             return None
         return param_value(found[1], kind, f"key '{name}' of '{self.tag}'")
 
+    def assert_fully_read(self) -> None:
+        """Reject unread keys; an unread empty list is most likely an empty ``env: []``."""
+        for name, (key, value) in self._attributes.items():
+            if name not in self._read and value.kind == "seq" and not value.items:
+                raise LaunchFileError(
+                    f"key '{name}' of '{self.tag}' is an empty list",
+                    key.location,
+                    expected="a list of mappings, or no such key",
+                )
+        super().assert_fully_read()
+
     def children(self) -> list[Entity]:
         """Sub-entities of list keys and the ``children`` actions, in the order written."""
         out: list[Entity] = []
