@@ -7,9 +7,11 @@ from __future__ import annotations
 from pathlib import Path
 
 import pytest
+import yaml
 
 from launchkit.errors import LaunchFileError
 from launchkit.frontend.launch_loader import LaunchLoader
+from launchkit.frontend.yaml import document
 from tests.engine.launcher import run_launchkit as launchkit
 
 #: Every file begins with this, so a process would leave a marker if anything started.
@@ -89,8 +91,18 @@ CASES: dict[str, tuple[str, int, int, str]] = {
 }
 
 
+@pytest.fixture(params=["libyaml", "pure Python"])
+def parser(request: pytest.FixtureRequest, monkeypatch: pytest.MonkeyPatch) -> str:
+    """Each case with libyaml's parser and with PyYAML's own (used where libyaml is missing)."""
+    if request.param == "pure Python":
+        monkeypatch.setattr(document, "_Loader", yaml.SafeLoader)
+    elif not getattr(yaml, "__with_libyaml__", False):
+        pytest.skip("PyYAML was built without libyaml")
+    return str(request.param)
+
+
 @pytest.mark.parametrize("case", sorted(CASES))
-def test_bad_yaml_is_one_located_error(tmp_path: Path, case: str) -> None:
+def test_bad_yaml_is_one_located_error(tmp_path: Path, case: str, parser: str) -> None:
     body, line, col, what = CASES[case]
     path = tmp_path / "bad.launch.yaml"
     path.write_text(PROLOGUE.format(marker=tmp_path / "started") + body)

@@ -12,7 +12,7 @@ about; the text must be UTF-8.
 
 from __future__ import annotations
 
-from dataclasses import dataclass, field
+from collections.abc import Sequence
 from pathlib import Path
 from typing import Any
 
@@ -27,23 +27,56 @@ MAX_ALIAS_NODES = 100_000
 
 _Loader: type[yaml.SafeLoader] = getattr(yaml, "CSafeLoader", yaml.SafeLoader)
 _MERGE_TAG = "tag:yaml.org,2002:merge"
+_STR_TAG = "tag:yaml.org,2002:str"
 _DEFAULT_TAGS = {"tag:yaml.org,2002:map", "tag:yaml.org,2002:seq"}
 
 
-@dataclass(eq=False)
 class Node:
-    """A YAML node: a mapping (``pairs``), a list (``items``) or a scalar (``value``)."""
+    """A YAML node: a mapping (``pairs``), a list (``items``) or a scalar (``value``), with the
+    line and column it begins at (one is built per scalar of the file: kept small)."""
 
-    kind: str  # "map", "seq" or "scalar"
-    location: Location
-    value: Any = None
-    style: str | None = None
-    tag: str = ""
-    pairs: list[tuple[Node, Node]] = field(default_factory=list)
-    items: list[Node] = field(default_factory=list)
-    size: int = 1
-    closed: bool = False
-    written: str = ""  # a scalar as written in the file
+    __slots__ = (
+        "closed",
+        "col",
+        "file",
+        "items",
+        "kind",
+        "line",
+        "pairs",
+        "size",
+        "style",
+        "tag",
+        "value",
+        "written",
+    )
+
+    def __init__(
+        self,
+        kind: str,
+        file: str,
+        mark: Any,
+        value: Any = None,
+        style: str | None = None,
+        tag: str = "",
+        written: str = "",
+    ) -> None:
+        self.kind = kind  # "map", "seq" or "scalar"
+        self.file = file
+        self.line: int = mark.line + 1
+        self.col: int = mark.column + 1
+        self.value = value
+        self.style = style
+        self.tag = tag
+        self.written = written  # a scalar as written in the file
+        self.pairs: Sequence[tuple[Node, Node]] = ()
+        self.items: Sequence[Node] = ()
+        self.size = 1  # nodes in it, itself included, aliases expanded
+        self.closed = kind == "scalar"
+
+    @property
+    def location(self) -> Location:
+        """Where the node begins."""
+        return Location(self.file, self.line, self.col)
 
     @property
     def is_merge_key(self) -> bool:
@@ -84,6 +117,7 @@ class _Composer:
 
     def __init__(self, text: str, path: Path) -> None:
         self.path = path
+        self.file = str(path)
         self.text = text
         self.loader: Any = _Loader(text)  # PyYAML's stubs leave the parser's methods untyped
         self.anchors: dict[str, Node] = {}
@@ -139,21 +173,20 @@ class _Composer:
 
     def _node(self) -> Node:
         """The next node, built without recursion: a stack of open collections."""
-        stack: list[Node] = []
+        stack: list[tuple[Node, list[Node]]] = []
         while True:
             event = self.loader.get_event()
-            node: Node | None = None
-            if isinstance(event, yaml.AliasEvent):
-                node = self._alias(event)
-            elif isinstance(event, yaml.ScalarEvent):
+            if isinstance(event, yaml.ScalarEvent):
                 node = self._scalar(event)
                 self._anchor(event, node)
+            elif isinstance(event, yaml.AliasEvent):
+                node = self._alias(event)
             elif isinstance(event, yaml.SequenceStartEvent | yaml.MappingStartEvent):
                 kind = "seq" if isinstance(event, yaml.SequenceStartEvent) else "map"
                 self._check_tag(event, kind)
-                opened = Node(kind, self.where(event.start_mark))
+                opened = Node(kind, self.file, event.start_mark)
                 self._anchor(event, opened)
-                stack.append(opened)
+                stack.append((opened, []))
                 if len(stack) > MAX_DEPTH:
                     raise LaunchFileError(
                         f"the YAML nests more than {MAX_DEPTH} levels deep",
@@ -162,41 +195,40 @@ class _Composer:
                     )
                 continue
             else:  # the end of the innermost open collection
-                node = stack.pop()
+                node, inside = stack.pop()
                 node.closed = True
+                node.size = 1 + sum(child.size for child in inside)
                 if node.kind == "map":
-                    flat = node.items
-                    node.pairs = list(zip(flat[0::2], flat[1::2], strict=True))
-                    node.items = []
-                    node.size = 1 + sum(k.size + v.size for k, v in node.pairs)
+                    node.pairs = list(zip(inside[0::2], inside[1::2], strict=True))
                 else:
-                    node.size = 1 + sum(item.size for item in node.items)
+                    node.items = inside
             if not stack:
                 return node
-            stack[-1].items.append(node)
+            stack[-1][1].append(node)
 
     def _scalar(self, event: yaml.ScalarEvent) -> Node:
         tag = event.tag
         if tag is None or tag == "!":
-            tag = self.loader.resolve(yaml.ScalarNode, event.value, event.implicit)
-        scalar = yaml.ScalarNode(tag, event.value, style=event.style)
+            # only a plain scalar can be anything but text (quoted and block ones are text)
+            plain = not event.style and event.tag is None
+            tag = (
+                self.loader.resolve(yaml.ScalarNode, event.value, event.implicit)
+                if plain
+                else _STR_TAG
+            )
         try:
-            value = event.value if tag == _MERGE_TAG else self.loader.construct_object(scalar)
+            if tag in (_STR_TAG, _MERGE_TAG):
+                value = event.value
+            else:
+                scalar = yaml.ScalarNode(tag, event.value, style=event.style)
+                value = self.loader.construct_object(scalar)
         except yaml.constructor.ConstructorError:
             raise LaunchFileError(
                 f"YAML tag {tag!r} is not supported",
                 self.where(event.start_mark),
                 expected="a plain scalar (text, number, boolean)",
             ) from None
-        return Node(
-            "scalar",
-            self.where(event.start_mark),
-            value,
-            event.style,
-            tag,
-            closed=True,
-            written=event.value,
-        )
+        return Node("scalar", self.file, event.start_mark, value, event.style, tag, event.value)
 
     def _check_tag(self, event: yaml.CollectionStartEvent, kind: str) -> None:
         if event.tag is not None and event.tag != "!" and event.tag not in _DEFAULT_TAGS:

@@ -16,6 +16,8 @@ A merge key (``<<: *common``) is honoured; a key written twice is an error.
 
 from __future__ import annotations
 
+from collections.abc import Sequence
+
 from launchkit.description.substitutions.base import Value
 from launchkit.errors import LaunchFileError, Location
 from launchkit.frontend.base_entity import Entity
@@ -213,7 +215,7 @@ def _is_entity_list(node: Node) -> bool:
     return node.kind == "seq" and bool(node.items) and node.items[0].kind == "map"
 
 
-def _merged_pairs(node: Node) -> list[tuple[Node, Node]]:
+def _merged_pairs(node: Node) -> Sequence[tuple[Node, Node]]:
     """The mapping's pairs with ``<<`` merges applied (its own keys win, as in YAML)."""
     if not any(key.is_merge_key for key, _ in node.pairs):
         return node.pairs
