@@ -79,7 +79,7 @@ def check_tree(
                         expected="a path to a launch file",
                     )
                 continue  # conditional: reported if and when the include runs
-            child = loader.load(included, action.location)
+            child = loader.load(included, action.location, action.syntax)
             tree.files[included] = child
             pending.append(child)
     if arguments is not None:

@@ -111,8 +111,9 @@ class Snapshot:
     current_file: Path | None
 
 
-#: Loads the launch file at a path (the location is the ``<include>`` that asks, for errors).
-Loader = Callable[[Path, "Location | None"], LoadedFile]
+#: Loads the launch file at a path (the location is the ``<include>`` that asks, for errors;
+#: the syntax is None to go by the file's suffix, or the one the include asks for).
+Loader = Callable[[Path, "Location | None", "str | None"], LoadedFile]
 
 
 class LaunchContext:

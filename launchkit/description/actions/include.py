@@ -25,7 +25,11 @@ class IncludeArg:
 
 
 class Include(Action):
-    """Load FILE, set its ``<arg>`` children as configurations, and run its actions."""
+    """Load FILE, set its ``<arg>`` children as configurations, and run its actions.
+
+    ``syntax`` is None to read FILE by its suffix, ``"python"`` or ``"frontend"`` (XML or YAML)
+    when a Python launch file's description source class says which.
+    """
 
     TAG = "include"
 
@@ -35,10 +39,13 @@ class Include(Action):
         args: Sequence[IncludeArg] = (),
         location: Location | None = None,
         condition: Condition | None = None,
+        *,
+        syntax: str | None = None,
     ) -> None:
         super().__init__(location, condition)
         self.file = file
         self.args = list(args)
+        self.syntax = syntax
 
     def resolve(self, context: LaunchContext) -> Path:
         """The included file: FILE as given (relative to the CWD, as ROS), else relative to
@@ -60,7 +67,7 @@ class Include(Action):
     def execute(self, context: LaunchContext) -> None:
         """Include the file in the current scope."""
         path = self.resolve(context)
-        description = context.loader(path, self.location)
+        description = context.loader(path, self.location, self.syntax)
         values = {arg.name: perform(arg.value, context) for arg in self.args}
         context.configurations.update(values)
         for required in description.required_arguments():

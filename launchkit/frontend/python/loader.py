@@ -16,6 +16,7 @@ from launchkit.frontend.python import launch_api as L
 from launchkit.frontend.python import launch_substitutions as S
 from launchkit.frontend.python import ros_api as R
 from launchkit.frontend.python import values
+from launchkit.frontend.python.description_sources import source_modules
 from launchkit.frontend.python.values import unsupported
 from launchkit.packages import PackageIndex
 
@@ -70,13 +71,8 @@ def _stand_in_modules() -> dict[str, types.ModuleType]:
         LaunchConfigurationEquals=S.LaunchConfigurationEquals,
         LaunchConfigurationNotEquals=S.LaunchConfigurationNotEquals,
     )
-    sources = _module(
-        "launch.launch_description_sources",
-        PythonLaunchDescriptionSource=L.LaunchDescriptionSource,
-        FrontendLaunchDescriptionSource=L.LaunchDescriptionSource,
-        XMLLaunchDescriptionSource=L.LaunchDescriptionSource,
-        AnyLaunchDescriptionSource=L.LaunchDescriptionSource,
-    )
+    frontend_sources = source_modules()
+    sources = frontend_sources["launch.launch_description_sources"]
     launch = _module(
         "launch",
         LaunchDescription=L.LaunchDescription,
@@ -119,19 +115,21 @@ def _stand_in_modules() -> dict[str, types.ModuleType]:
     )
     ament = _module("ament_index_python", packages=packages, **packages.__dict__)
     return {
-        m.__name__: m
-        for m in (
-            launch,
-            actions,
-            substitutions,
-            conditions,
-            sources,
-            launch_ros,
-            ros_actions,
-            ros_substitutions,
-            ament,
-            packages,
-        )
+        **frontend_sources,
+        **{
+            m.__name__: m
+            for m in (
+                launch,
+                actions,
+                substitutions,
+                conditions,
+                launch_ros,
+                ros_actions,
+                ros_substitutions,
+                ament,
+                packages,
+            )
+        },
     }
 
 
