@@ -132,7 +132,7 @@ def generate_launch_description():
         LogInfo(msg=PythonExpression("'{0.__class__}'.format(1)")),
     ])
 """
-    with pytest.raises(LaunchkitError, match="gen.launch.py:11.*'format' is not available"):
+    with pytest.raises(LaunchkitError, match=r"gen\.launch\.py:11.*'format' is not available"):
         evaluate_xml(source, name="gen.launch.py")
     working = source.replace("        LogInfo(msg=PythonExpression(\"'{0.__class__}'", "#")
     assert evaluate_xml(working, name="gen.launch.py").messages() == ["2", "True"]
