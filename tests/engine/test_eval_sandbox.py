@@ -8,7 +8,13 @@ from pathlib import Path
 
 import pytest
 
-from launchkit.description.substitutions.sandbox import Limits, SandboxError, evaluate
+from launchkit.description.substitutions.sandbox import (
+    BUILTINS,
+    STR_METHODS,
+    Limits,
+    SandboxError,
+    evaluate,
+)
 from launchkit.errors import LaunchkitError
 from tests.conftest import EvaluateXml
 from tests.engine.launcher import run_launchkit
@@ -148,3 +154,9 @@ def test_launcher_rejects_a_runaway_eval_at_once(tmp_path: Path) -> None:
     assert result.returncode == 2
     assert f"{path}:2:" in result.stderr and "too large" in result.stderr
     assert "Traceback" not in result.stderr + result.stdout
+
+
+def test_the_docs_list_the_vocabulary() -> None:
+    text = (Path(__file__).resolve().parents[2] / "docs" / "launch-files.md").read_text()
+    section = text.split("### `$(eval)` and `PythonExpression`")[1].split("###")[0]
+    assert all(f"`{name}`" in section for name in (*BUILTINS, *STR_METHODS))
