@@ -18,6 +18,7 @@ import pytest
 
 from launchkit.runtime.child_requests import MAX_REFUSED
 from launchkit.runtime.lines import MAX_LINE_BYTES, SPLIT_MARK, LineBuffer
+from tests.conftest import EvaluateXml
 from tests.engine.conftest import write
 from tests.engine.launcher import Launcher, alive, executable, wait_gone
 
@@ -81,8 +82,7 @@ FLOODERS = (
 )
 
 
-@pytest.mark.parametrize("signum", [signal.SIGINT, signal.SIGTERM])
-def test_floods_neither_starve_signals_nor_grow_the_launcher(tmp_path: Path, signum: int) -> None:
+def test_floods_neither_starve_signals_nor_grow_the_launcher(tmp_path: Path) -> None:
     path = write(tmp_path, FLOODERS)
     launcher = Launcher(
         str(path),
@@ -93,16 +93,16 @@ def test_floods_neither_starve_signals_nor_grow_the_launcher(tmp_path: Path, sig
         launcher.wait_line("[lines-3] tick")
         flooders = list(launcher.pids.values())
         peak = 0.0
-        deadline = time.monotonic() + 3
+        deadline = time.monotonic() + 2
         while time.monotonic() < deadline:  # let the floods run a while, watching memory
             peak = max(peak, _rss_mb(launcher.proc.pid))
             time.sleep(0.1)
-        launcher.signal(signum)
+        launcher.signal(signal.SIGTERM)
         status = launcher.finish(timeout=30)
     finally:
         if launcher.proc.poll() is None:
             launcher.kill()
-    assert status == (0 if signum == signal.SIGINT else 128 + signum)
+    assert status == 128 + signal.SIGTERM
     wait_gone(flooders)
     # it used to grow by the size of the floods (800 MB and more)
     assert peak < 200, f"the launcher's RSS reached {peak:.0f} MB under the floods"
@@ -175,3 +175,10 @@ def test_refused_child_request_connections_are_closed(run) -> None:  # type: ign
     assert alive(launcher_pid)
     launcher.signal(signal.SIGINT)
     assert launcher.finish() == 0
+
+
+def test_what_a_command_substitution_leaves_running_is_killed(evaluate_xml: EvaluateXml) -> None:
+    command = "sh -c &quot;sleep 300 &gt;/dev/null 2&gt;&amp;1 &amp; echo $!&quot;"
+    result = evaluate_xml(f"<launch><log message=\"$(command '{command}')\"/></launch>")
+    leftover = int(result.messages()[0])
+    wait_gone([leftover])  # ROS leaves it running, past the end of the launch

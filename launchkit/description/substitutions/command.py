@@ -89,12 +89,18 @@ def _run(argv: list[str], context: LaunchContext) -> tuple[int | None, bytes, by
     groups = context.child_groups
     if groups is not None:
         groups.watch(process.pid)
+    code: int | None = None
     try:
         out, err, complete = _collect(process)
-        code = process.wait() if complete else None
+        if complete:
+            # wait without reaping: while the leader is a zombie, its group id cannot be reused
+            # by another process, so killing what is left in the group is safe
+            os.waitid(os.P_PID, process.pid, os.WEXITED | os.WNOWAIT)
     finally:
         _kill_group(process.pid)
-        process.wait()
+        returncode = process.wait()
+    if complete:
+        code = returncode
         for stream in (process.stdout, process.stderr):
             if stream is not None:
                 stream.close()
