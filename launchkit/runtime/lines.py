@@ -27,11 +27,17 @@ class LineBuffer:
     def feed(self, chunk: bytes) -> list[str]:
         """The lines ``chunk`` completes (and the pieces of over-long ones)."""
         data = self._pending + chunk if self._pending else chunk
-        *complete, rest = data.split(b"\n")
+        end = data.rfind(b"\n")
         lines: list[str] = []
-        for line in complete:
-            lines.extend(self._pieces(line))
-        self._pending = b""
+        if end >= 0:
+            # one decode for every complete line (a newline is never inside a UTF-8 character)
+            text = data[:end].decode("utf-8", errors="replace")
+            lines = text.split("\n")
+            if "\r" in text:
+                lines = [line.rstrip("\r") for line in lines]
+            if max(map(len, lines)) * 4 > self.max_line:  # some line may be too long: check
+                lines = [piece for line in lines for piece in self._pieces(line.encode())]
+        rest = data[end + 1 :]
         if len(rest) > self.max_line:
             *pieces, rest = self._cut(rest)
             lines.extend(_decode(piece) + SPLIT_MARK for piece in pieces)
