@@ -96,11 +96,13 @@ def describe(
         from launchkit.bridge.launch import add_bridge
 
         add_bridge(tree.top, arguments)
+    from launchkit.runtime.signals import raising
+
     recorder = Recorder()
     context = _context(recorder, arguments, packages, loader, None)
     recorder.context = context
     try:
-        with context.in_file(tree.top.path):
+        with raising(), context.in_file(tree.top.path):
             for action in tree.top.actions:
                 action.visit(context)
         return render(recorder.items)

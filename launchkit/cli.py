@@ -9,6 +9,7 @@ from __future__ import annotations
 
 import argparse
 import os
+import signal
 import sys
 from pathlib import Path
 from typing import TYPE_CHECKING
@@ -126,8 +127,8 @@ def _guarded(action: object, debug: bool) -> int:
             traceback.print_exc()
         print(error.format(), file=sys.stderr)
         return error.exit_status
-    except KeyboardInterrupt:
-        return 130
+    except KeyboardInterrupt as interrupt:  # launchkit's Interrupted says which signal
+        return 128 + getattr(interrupt, "signum", signal.SIGINT)
 
 
 def _ros_command(command: str, argv: list[str]) -> int:

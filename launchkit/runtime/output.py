@@ -45,10 +45,6 @@ class Output:
             text = f"{_LEVEL_COLOURS[level]}{text}{_RESET}"
         self._write([text])
 
-    def child_line(self, label: str, index: int, line: str, mode: str, stream: str) -> None:
-        """One line of a child's output, routed by its ``output`` mode."""
-        self.child_lines(label, index, [line], mode, stream)
-
     def child_lines(self, label: str, index: int, lines: list[str], mode: str, stream: str) -> None:
         """Lines of a child's output, routed by its ``output`` mode, written in one go."""
         if not lines:

@@ -37,6 +37,23 @@ def exit_status(signum: int) -> int:
     return 0 if signum == signal.SIGINT else 128 + signum
 
 
+@contextmanager
+def raising() -> Iterator[None]:
+    """Within the body, each of :data:`HANDLED_SIGNALS` raises :class:`Interrupted` (for work
+    without a supervisor loop, such as ``--print``: a ``$(command)`` it runs is then killed
+    rather than orphaned by SIGTERM's default action). Main thread only."""
+    previous = {signum: signal.signal(signum, _raise) for signum in HANDLED_SIGNALS}
+    try:
+        yield
+    finally:
+        for signum, handler in previous.items():
+            signal.signal(signum, handler)
+
+
+def _raise(signum: int, frame: object) -> None:
+    raise Interrupted(signum)
+
+
 class SignalPipe:
     """The wakeup pipe and the handlers installed while a launch runs."""
 

@@ -61,6 +61,16 @@ def test_a_signal_during_command_substitution_stops_it_and_its_group(
     assert "Traceback" not in launcher.text
 
 
+def test_sigterm_during_print_kills_the_command_it_waits_for(run, tmp_path: Path) -> None:  # type: ignore[no-untyped-def]
+    marker = tmp_path / "grandchild"
+    command = f"sh -c &quot;sleep 300 &amp; echo $! &gt; {marker}; wait&quot;"
+    launcher = run(f"<log message=\"$(command '{command}')\"/>", "--print")
+    grandchild = int(_wait_for_file(marker))
+    launcher.signal(signal.SIGTERM)  # its default action would leave the command running
+    assert launcher.finish(timeout=20) == 128 + signal.SIGTERM
+    wait_gone([grandchild])
+
+
 def test_a_signal_during_a_timer_command_stops_the_launch(run, tmp_path: Path) -> None:  # type: ignore[no-untyped-def]
     marker = tmp_path / "command"
     command = f"sh -c &quot;echo $$ &gt; {marker}; exec sleep 300&quot;"
