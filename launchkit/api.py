@@ -10,7 +10,7 @@ from typing import IO
 
 from launchkit.checks import CheckedTree, check_tree, undeclared_arguments
 from launchkit.description.launch_context import LaunchContext, Runner
-from launchkit.errors import PackageNotFoundError
+from launchkit.errors import LaunchkitError, PackageNotFoundError
 from launchkit.frontend.launch_loader import LaunchLoader
 from launchkit.packages import PackageIndex
 from launchkit.runtime.hooks import SupervisorHooks
@@ -68,7 +68,9 @@ def _context(
         if log_dir is None:
             from launchkit.runtime.logdir import create_run_dir
 
-            log_dir = create_run_dir(os.environ)
+            run = create_run_dir(os.environ)
+            run.release()  # nothing runs (--print): later runs may prune it
+            log_dir = run.path
         return log_dir
 
     return LaunchContext(
@@ -94,11 +96,13 @@ def describe(
         from launchkit.bridge.launch import add_bridge
 
         add_bridge(tree.top, arguments)
+    from launchkit.runtime.signals import raising
+
     recorder = Recorder()
     context = _context(recorder, arguments, packages, loader, None)
     recorder.context = context
     try:
-        with context.in_file(tree.top.path):
+        with raising(), context.in_file(tree.top.path):
             for action in tree.top.actions:
                 action.visit(context)
         return render(recorder.items)
@@ -142,32 +146,39 @@ def run(
     ``hooks`` observes the launch as it runs (the test plugin's event channel uses it).
     ``bridge`` also runs ``launchkit bridge`` (to a ROS 2 DDS graph) under supervision.
     """
-    from launchkit.runtime.logdir import create_run_dir
+    from launchkit.runtime.logdir import LogLimits, create_run_dir
     from launchkit.runtime.network import NodeNetwork
     from launchkit.runtime.output import Output
     from launchkit.runtime.supervisor import Supervisor
 
     arguments = dict(arguments or {})
     packages, loader = PackageIndex(), LaunchLoader()
-    tree = check_tree(path, arguments, loader, packages)
-    if bridge:
-        from launchkit.bridge.launch import add_bridge
-
-        add_bridge(tree.top, arguments)
+    limits = LogLimits.from_environment(os.environ)
+    # As ros2 launch: the run folder exists (and `latest` points at it) even when the file is
+    # rejected; its launch.log then holds the error.
+    run_dir = create_run_dir(os.environ, limits.keep_runs)
     output = Output(stream or sys.stdout)
-    run_dir = create_run_dir(os.environ)
-    output.open_logs(run_dir)
-    output.launch_line("INFO", "launch", f"All log files can be found below {run_dir}")
-    for name in undeclared_arguments(tree, arguments):
-        output.launch_line(
-            "WARNING",
-            "launch",
-            f"argument '{name}' is not declared or used by "
-            f"{path.name} (or the files it includes statically)",
-        )
-    supervisor = Supervisor(output, network=NodeNetwork(router), hooks=hooks)
-    context = _context(supervisor, arguments, packages, loader, run_dir)
+    output.open_logs(run_dir.path, limits)
     try:
+        tree = check_tree(path, arguments, loader, packages)
+        if bridge:
+            from launchkit.bridge.launch import add_bridge
+
+            add_bridge(tree.top, arguments)
+        output.launch_line("INFO", "launch", f"All log files can be found below {run_dir.path}")
+        for name in undeclared_arguments(tree, arguments):
+            output.launch_line(
+                "WARNING",
+                "launch",
+                f"argument '{name}' is not declared or used by "
+                f"{path.name} (or the files it includes statically)",
+            )
+        supervisor = Supervisor(output, network=NodeNetwork(router), hooks=hooks)
+        context = _context(supervisor, arguments, packages, loader, run_dir.path)
         return supervisor.run(tree.top, context)
+    except LaunchkitError as error:
+        output.launch_line("ERROR", "launch", error.format(), screen=False)
+        raise
     finally:
         output.close()
+        run_dir.release()

@@ -1,14 +1,17 @@
 """The ``launchkit`` command line: argument parsing only; the work is in :mod:`launchkit.api`.
 
-Exit status: 0 when all went well, 2 for a user mistake (reported as one
-``FILE:LINE:COL: error: ...`` line before anything starts), 1 for a failure while running
-(or the exit code of an ``on_exit="shutdown"`` process that failed).
+Exit status: 0 when all went well (a launch stopped with Ctrl-C included, as ``ros2 launch``),
+2 for a user mistake (reported as one ``FILE:LINE:COL: error: ...`` line before anything
+starts), 1 for a failure while running (or the exit code of an ``on_exit="shutdown"`` process
+that failed), 128 + N for a launch stopped by SIGTERM, SIGHUP or SIGQUIT, or for any command
+a signal interrupted (130 for Ctrl-C while parsing or ``--print``).
 """
 
 from __future__ import annotations
 
 import argparse
 import os
+import signal
 import sys
 from pathlib import Path
 from typing import TYPE_CHECKING
@@ -129,8 +132,8 @@ def _guarded(action: object, debug: bool) -> int:
             traceback.print_exc()
         print(error.format(), file=sys.stderr)
         return error.exit_status
-    except KeyboardInterrupt:
-        return 130
+    except KeyboardInterrupt as interrupt:  # launchkit's Interrupted says which signal
+        return 128 + getattr(interrupt, "signum", signal.SIGINT)
 
 
 def _ros_command(command: str, argv: list[str]) -> int:

@@ -103,6 +103,17 @@ class Runner(Protocol):
         """Print a launch line ``[LEVEL] [logger]: message``."""
 
 
+class ChildGroups(Protocol):
+    """Who must know the process groups that evaluation starts (a ``$(command)``), so that
+    they die with the launcher however it ends (the runtime's orphan guard)."""
+
+    def watch(self, pgid: int) -> None:
+        """``pgid`` exists now."""
+
+    def forget(self, pgid: int) -> None:
+        """``pgid`` is gone (its id may be reused)."""
+
+
 @dataclass(frozen=True)
 class Snapshot:
     """A scope and file captured for later (timers run their actions in it)."""
@@ -139,6 +150,11 @@ class LaunchContext:
         self._log_dir = log_dir
         self._stack: list[Scope] = []
         self._scratch: Path | None = None
+        #: set by the supervisor: told about every ``$(command)``'s process group
+        self.child_groups: ChildGroups | None = None
+        #: set by the supervisor: the private folder generated files go in (removed even when
+        #: the launcher is killed); None: the system's temporary folder
+        self.scratch_root: Path | None = None
 
     @property
     def configurations(self) -> dict[str, str]:
@@ -158,7 +174,7 @@ class LaunchContext:
     def write_scratch_file(self, prefix: str, suffix: str, text: str) -> Path:
         """Write a generated file (a node's parameters) that lives as long as the run."""
         if self._scratch is None:
-            self._scratch = Path(tempfile.mkdtemp(prefix="launchkit-"))
+            self._scratch = Path(tempfile.mkdtemp(prefix="launchkit-", dir=self.scratch_root))
         handle, name = tempfile.mkstemp(prefix=prefix, suffix=suffix, dir=self._scratch)
         with os.fdopen(handle, "w") as stream:
             stream.write(text)

@@ -87,10 +87,15 @@ class TextSubstitution(SubstitutionLike):
 
 
 class PythonExpression(SubstitutionLike):
-    """``launch.substitutions.PythonExpression`` (evaluated in ``$(eval)``'s math-only sandbox)."""
+    """``launch.substitutions.PythonExpression``: evaluated by ``$(eval)``'s sandbox, with
+    ``python_modules`` (each a name or a substitution; ``math`` is the only one offered)."""
 
-    def __init__(self, expression: Any) -> None:
-        super().__init__(Eval([to_value(expression)], here()))
+    def __init__(self, expression: Any, python_modules: Any = ("math",)) -> None:
+        names = [python_modules] if isinstance(python_modules, str | SubstitutionLike) else None
+        modules: list[Any] = []
+        for index, name in enumerate(names or python_modules):
+            modules += [",", name] if index else [name]
+        super().__init__(Eval([to_value(expression), to_value(modules)], here()))
 
 
 class PathJoinSubstitution(SubstitutionLike):
