@@ -11,8 +11,9 @@ import argparse
 import os
 import sys
 from pathlib import Path
-from typing import TYPE_CHECKING
+from typing import TYPE_CHECKING, NoReturn
 
+from launchkit._exit import exit_promptly
 from launchkit.errors import LaunchkitError, UserError
 
 if TYPE_CHECKING:
@@ -104,6 +105,13 @@ def main(argv: list[str] | None = None) -> int:
         build_parser().print_help()
         return 2
     return _guarded(lambda: _dispatch(args), debug=getattr(args, "debug", False))
+
+
+def console_main() -> NoReturn:
+    """The ``launchkit`` console script: :func:`main`, then a prompt exit with its status (the
+    interpreter's own teardown would delay the exit by up to seconds on a busy machine; see
+    :mod:`launchkit._exit`)."""
+    exit_promptly(main())
 
 
 def _guarded(action: object, debug: bool) -> int:
@@ -220,7 +228,7 @@ def _exec(args: argparse.Namespace, packages: object) -> int:
     return 0  # not reached
 
 
-__all__ = ["main"]
+__all__ = ["console_main", "main"]
 
 
 if __name__ == "__main__":
