@@ -13,6 +13,7 @@ import sys
 from pathlib import Path
 from typing import TYPE_CHECKING, NoReturn
 
+from launchkit._argparse import CommandParser
 from launchkit._exit import exit_promptly
 from launchkit.errors import LaunchkitError, UserError
 
@@ -22,8 +23,8 @@ if TYPE_CHECKING:
 ROS_COMMANDS = ("topic", "node", "service", "param", "interface", "router")
 
 
-def _launch_parser(prog: str, description: str) -> argparse.ArgumentParser:
-    parser = argparse.ArgumentParser(prog=prog, description=description)
+def _launch_parser(prog: str, description: str) -> CommandParser:
+    parser = CommandParser(prog=prog, description=description)
     parser.add_argument(
         "items",
         nargs="+",
@@ -37,7 +38,7 @@ def _launch_parser(prog: str, description: str) -> argparse.ArgumentParser:
 
 def build_parser() -> argparse.ArgumentParser:
     """The top-level parser (the ROS commands are parsed by ``launchkit.ros.cli``)."""
-    parser = argparse.ArgumentParser(
+    parser = CommandParser(
         prog="launchkit", description="Run ROS 2 XML launch files without a ROS install."
     )
     commands = parser.add_subparsers(dest="command", metavar="COMMAND")
@@ -179,16 +180,19 @@ def _launch(args: argparse.Namespace, hooks: SupervisorHooks | None = None) -> i
     arguments = parse_launch_arguments(args.items[len(files) :])
     packages = PackageIndex()
     path = api.resolve_launch_file(files[0], files[1] if len(files) == 2 else None, packages)
-    if args.command == "check":
-        tree = api.check(path, arguments, packages=packages)
-        print(f"{path}: ok ({len(tree.files)} file(s), {tree.entity_count} entities)")
-        return 0
-    if args.show_args:
-        print(api.show_arguments(path))
-        return 0
-    if args.print_description:
-        print(api.describe(path, arguments))
-        return 0
+    try:
+        if args.command == "check":
+            print(api.check_report(path, arguments))
+            return 0
+        if args.show_args:
+            print(api.show_arguments(path))
+            return 0
+        if args.print_description:
+            print(api.describe(path, arguments))
+            return 0
+    except LaunchkitError as error:
+        error.exit_status = 2  # as for `run`: found before anything would start
+        raise
     if args.show_all_subprocesses_output:
         os.environ["OVERRIDE_LAUNCH_PROCESS_OUTPUT"] = "both"
     try:
