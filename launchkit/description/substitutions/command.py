@@ -12,6 +12,20 @@ if TYPE_CHECKING:
     from launchkit.description.context import LaunchContext
 
 ON_STDERR = ("fail", "ignore", "warn", "capture")
+QUOTED_LINES = 4  # of a failing program's stderr: its last words, not a whole traceback
+
+
+def last_words(stderr: str) -> tuple[str, list[str]]:
+    """How to show a program's stderr in an error: one line inline (``": oops"``), or the
+    last :data:`QUOTED_LINES` lines to quote under a headline that says how many there were."""
+    lines = [line.rstrip() for line in stderr.strip().splitlines() if line.strip()]
+    if not lines:
+        return "", []
+    if len(lines) == 1:
+        return f": {lines[0].strip()}", []
+    if len(lines) <= QUOTED_LINES:
+        return "; on stderr:", lines
+    return f"; the last {QUOTED_LINES} of its {len(lines)} lines on stderr:", lines[-QUOTED_LINES:]
 
 
 class Command(Call):
@@ -53,14 +67,17 @@ class Command(Call):
         except OSError as error:
             raise self.fail(f"command {text!r} could not run: {error.strerror}") from None
         stderr = result.stderr.strip()
+        said, quoted = last_words(stderr)
         if result.returncode != 0:
-            detail = f": {stderr}" if stderr else ""
-            raise self.fail(f"command {text!r} failed with exit code {result.returncode}{detail}")
+            raise self.fail(
+                f"command {text!r} failed with exit code {result.returncode}{said}", quoted=quoted
+            )
         if stderr:
             if on_stderr == "fail":
                 raise self.fail(
-                    f"command {text!r} wrote to stderr: {stderr}",
+                    f"command {text!r} wrote to stderr{said}",
                     expected="no stderr output, or $(command '...' warn|ignore|capture)",
+                    quoted=quoted,
                 )
             if on_stderr == "warn":
                 context.log("WARNING", f"command {text!r} wrote to stderr: {stderr}")
