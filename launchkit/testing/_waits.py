@@ -96,9 +96,12 @@ class Waits:
                 try:
                     value = check()
                 except Impossible as why:
-                    # a launch error is the cause of whatever ended afterwards: name it first
-                    cause = self.launch_over() if state.errors else None
-                    problem = cause or f"{why} before it came"
+                    # the process exited; if the launch is over (an error, a required death,
+                    # its end), that is the cause of the exit: name it first
+                    over = self.launch_over()
+                    problem = f"{why} before it came"
+                    if over is not None:
+                        problem = f"{over} ({problem})"
                     raise ProcessDied(self.failure(what, problem, subject)) from None
                 if value is not None:
                     return value
