@@ -3,6 +3,7 @@ robot_wheel)`` points inside site-packages and its launch files run from anywher
 
 from __future__ import annotations
 
+import os
 import subprocess
 import sys
 import venv
@@ -11,10 +12,18 @@ from pathlib import Path
 REPO = Path(__file__).resolve().parents[1]
 
 
-def run(*argv: str | Path, cwd: Path) -> subprocess.CompletedProcess[str]:
+def run(
+    *argv: str | Path, cwd: Path, env: dict[str, str] | None = None
+) -> subprocess.CompletedProcess[str]:
     """Run a command to completion, failing the test with its output if it fails."""
     result = subprocess.run(
-        [str(a) for a in argv], cwd=cwd, capture_output=True, text=True, timeout=600, check=False
+        [str(a) for a in argv],
+        cwd=cwd,
+        env=env,
+        capture_output=True,
+        text=True,
+        timeout=600,
+        check=False,
     )
     assert result.returncode == 0, f"{argv} failed:\n{result.stdout}\n{result.stderr}"
     return result
@@ -59,5 +68,8 @@ def test_installed_wheel_has_the_robot_share_dir(tmp_path: Path) -> None:
         "<param name='robot_description' type='str' value=\"$(command 'xacro "
         f"{share / 'urdf' / 'three_wheeled_robot.urdf.xacro'}')\"/></node></launch>"
     )
-    printed = run(env_dir / "bin" / "launchkit", "run", xacro, "--print", cwd=elsewhere)
+    # as in the activated venv, and only it: the test's own environment has xacro too
+    activated = {**os.environ, "PATH": f"{env_dir / 'bin'}{os.pathsep}/usr/bin{os.pathsep}/bin"}
+    launchkit = env_dir / "bin" / "launchkit"
+    printed = run(launchkit, "run", xacro, "--print", cwd=elsewhere, env=activated)
     assert "<robot" in printed.stdout
