@@ -72,9 +72,9 @@ def build_parser() -> argparse.ArgumentParser:
     run.add_argument("--events-fd", type=int, help=argparse.SUPPRESS)
     commands.add_parser(
         "check",
-        help="validate a launch file and run nothing",
+        help="check a launch file as --print would (packages, includes, commands); run nothing",
         add_help=False,
-        parents=[_launch_parser("launchkit check", "Validate a launch file.")],
+        parents=[_launch_parser("launchkit check", "Check a launch file as --print would.")],
     )
     pkg = commands.add_parser("pkg", help="packages: list, prefix, executables")
     pkg_commands = pkg.add_subparsers(dest="pkg_command", metavar="SUBCOMMAND", required=True)
