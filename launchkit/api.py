@@ -6,14 +6,20 @@ import os
 import sys
 from collections.abc import Mapping
 from pathlib import Path
-from typing import IO
+from typing import IO, TYPE_CHECKING
 
-from launchkit.checks import CheckedTree, check_tree, undeclared_arguments
+from launchkit.checks import CheckedTree, check_tree, static_path, undeclared_arguments
+from launchkit.description.actions import DeclareArgument, Include
+from launchkit.description.actions.base import Action
 from launchkit.description.launch_context import LaunchContext, Runner
+from launchkit.description.launch_description import LaunchDescription, walk
 from launchkit.errors import LaunchkitError, PackageNotFoundError
 from launchkit.frontend.launch_loader import LaunchLoader
 from launchkit.packages import PackageIndex
 from launchkit.runtime.hooks import SupervisorHooks
+
+if TYPE_CHECKING:
+    from launchkit.runtime.recorder import Recorded
 
 
 def resolve_launch_file(target: str, filename: str | None, packages: PackageIndex) -> Path:
@@ -83,11 +89,15 @@ def _context(
     )
 
 
-def describe(
+def dry_run(
     path: Path, arguments: Mapping[str, str] | None = None, *, bridge: bool = False
-) -> str:
-    """What running ``path`` would do (processes with command lines, env changes, timers)."""
-    from launchkit.runtime.recorder import Recorder, render
+) -> tuple[CheckedTree, list[Recorded]]:
+    """Check ``path``, then evaluate it as running it would, starting nothing: every included
+    file is loaded, every package and executable looked up, every ``$(command)`` run. What it
+    would start is recorded (timers' actions at once); errors are raised as ``run`` raises
+    them. ``bridge`` adds ``launchkit bridge`` as ``run(bridge=True)`` does."""
+    from launchkit.runtime.recorder import Recorder
+    from launchkit.runtime.signals import raising
 
     arguments = dict(arguments or {})
     packages, loader = PackageIndex(), LaunchLoader()
@@ -96,8 +106,6 @@ def describe(
         from launchkit.bridge.launch import add_bridge
 
         add_bridge(tree.top, arguments)
-    from launchkit.runtime.signals import raising
-
     recorder = Recorder()
     context = _context(recorder, arguments, packages, loader, None)
     recorder.context = context
@@ -105,19 +113,51 @@ def describe(
         with raising(), context.in_file(tree.top.path):
             for action in tree.top.actions:
                 action.visit(context)
-        return render(recorder.items)
+        return tree, recorder.items
     finally:
         context.cleanup()
 
 
+def describe(
+    path: Path, arguments: Mapping[str, str] | None = None, *, bridge: bool = False
+) -> str:
+    """What running ``path`` would do (processes with command lines, env changes, timers)."""
+    from launchkit.runtime.recorder import render
+
+    return render(dry_run(path, arguments, bridge=bridge)[1])
+
+
+def check_report(path: Path, arguments: Mapping[str, str] | None = None) -> str:
+    """``launchkit check``: check ``path`` and evaluate it as ``--print`` does (packages,
+    included files, commands), then say what was checked and what was not."""
+    from launchkit.runtime.recorder import count
+
+    tree, items = dry_run(path, arguments)
+    processes, timers = count(items)
+    report = (
+        f"{path}: ok ({len(tree.files)} file(s), {tree.entity_count} entities; "
+        f"with these arguments it starts {processes} process(es)"
+        + (f" and {timers} timer(s)" if timers else "")
+        + ")"
+    )
+    if any(action.condition is not None for d in tree.files.values() for action in walk(d.actions)):
+        report += (
+            "\nnot checked: what an if/unless that is false with these arguments would "
+            "include or start (pass other arguments to check it)"
+        )
+    return report
+
+
 def show_arguments(path: Path) -> str:
-    """The arguments ``path`` declares, with defaults, descriptions and choices."""
-    description = check_tree(path, None, LaunchLoader(), PackageIndex()).top
+    """The arguments ``path`` and the files it includes declare (first declaration wins, as
+    ``ros2 launch --show-args``), with defaults, descriptions and choices."""
+    packages = PackageIndex()
+    tree = check_tree(path, None, LaunchLoader(), packages)
     lines = ["Arguments (pass arguments as '<name>:=<value>'):"]
-    declared = description.declared_arguments()
+    declared = _declared_arguments(tree, packages)
     if not declared:
         lines.append("\n  No arguments.")
-    for arg in declared:
+    for arg, conditional in declared:
         lines.append(f"\n    '{arg.name}':")
         lines.append(f"        {arg.description or 'no description given'}")
         if arg.choices:
@@ -126,9 +166,36 @@ def show_arguments(path: Path) -> str:
         lines.append(
             f"        (default: {default!r})" if default is not None else "        (required)"
         )
-        if arg.condition is not None:
+        if conditional:
             lines.append("        (declared conditionally)")
     return "\n".join(lines)
+
+
+def _declared_arguments(
+    tree: CheckedTree, packages: PackageIndex
+) -> list[tuple[DeclareArgument, bool]]:
+    """Every ``<arg>`` of the top file and of the files it includes statically, in document
+    order (an included file's where its ``<include>`` is), each with whether an ``if`` or
+    ``unless`` on it or around it decides whether it is declared at all."""
+    found: dict[str, tuple[DeclareArgument, bool]] = {}
+
+    def visit(description: LaunchDescription, actions: list[Action], conditional: bool) -> None:
+        for action in actions:
+            guarded = conditional or action.condition is not None
+            if isinstance(action, DeclareArgument):
+                found.setdefault(action.name, (action, guarded))
+            elif isinstance(action, Include):
+                included = static_path(action, description.path, packages)
+                child = tree.files.get(included) if included is not None else None
+                if child is not None and child.path not in visiting:
+                    visiting.add(child.path)
+                    visit(child, child.actions, guarded)
+                    visiting.discard(child.path)
+            visit(description, list(action.children()), guarded)
+
+    visiting = {tree.top.path}
+    visit(tree.top, tree.top.actions, False)
+    return list(found.values())
 
 
 def run(

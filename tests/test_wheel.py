@@ -5,6 +5,7 @@ carries the browser viewer's page and its vendored libraries, every import resol
 from __future__ import annotations
 
 import json
+import os
 import re
 import subprocess
 import sys
@@ -14,10 +15,18 @@ from pathlib import Path
 REPO = Path(__file__).resolve().parents[1]
 
 
-def run(*argv: str | Path, cwd: Path) -> subprocess.CompletedProcess[str]:
+def run(
+    *argv: str | Path, cwd: Path, env: dict[str, str] | None = None
+) -> subprocess.CompletedProcess[str]:
     """Run a command to completion, failing the test with its output if it fails."""
     result = subprocess.run(
-        [str(a) for a in argv], cwd=cwd, capture_output=True, text=True, timeout=600, check=False
+        [str(a) for a in argv],
+        cwd=cwd,
+        env=env,
+        capture_output=True,
+        text=True,
+        timeout=600,
+        check=False,
     )
     assert result.returncode == 0, f"{argv} failed:\n{result.stdout}\n{result.stderr}"
     return result
@@ -55,6 +64,18 @@ def test_installed_wheel_has_the_robot_share_dir(tmp_path: Path) -> None:
     assert "spawn_entity" in printed.stdout and "robot_state_publisher" in printed.stdout
     assert str(share / "config" / "robot.rviz") in printed.stdout
     assert "launchkit.stock.gazebo_ros.server" in printed.stdout
+    # xacro is a runtime dependency: tutorial launch files run $(command 'xacro ...')
+    xacro = tmp_path / "xacro.launch.xml"
+    xacro.write_text(
+        "<launch><node pkg='robot_state_publisher' exec='robot_state_publisher'>"
+        "<param name='robot_description' type='str' value=\"$(command 'xacro "
+        f"{share / 'urdf' / 'three_wheeled_robot.urdf.xacro'}')\"/></node></launch>"
+    )
+    # as in the activated venv, and only it: the test's own environment has xacro too
+    activated = {**os.environ, "PATH": f"{env_dir / 'bin'}{os.pathsep}/usr/bin{os.pathsep}/bin"}
+    launchkit = env_dir / "bin" / "launchkit"
+    printed = run(launchkit, "run", xacro, "--print", cwd=elsewhere, env=activated)
+    assert "<robot" in printed.stdout
     check_viewer_files(python, elsewhere)
 
 

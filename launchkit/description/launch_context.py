@@ -35,8 +35,8 @@ class Scope:
 
     configurations: dict[str, str] = field(default_factory=dict)
     environment: dict[str, str] = field(default_factory=dict)
-    global_params: list[tuple[str, str]] = field(default_factory=list)
-    params_files: list[str] = field(default_factory=list)
+    # (name, value) from <set_parameter>, a file path from <set_parameters_from_file>, in order
+    global_params: list[tuple[str, str] | str] = field(default_factory=list)
     remaps: list[tuple[str, str]] = field(default_factory=list)
 
     def copy(self) -> Scope:

@@ -1,24 +1,23 @@
 """``<node>``: a ROS node from a package, with ROS 2's command-line conventions.
 
 The command is ``EXECUTABLE [args] --ros-args [ros_args] -r __node:=NAME -r __ns:=/NS
---params-file FILE ... -r from:=to ...``, so a real ROS 2 executable found through
-``AMENT_PREFIX_PATH`` runs unchanged.
+[global parameters] [node parameters] -r from:=to ...``, as launch_ros builds it, so a real
+ROS 2 executable found through ``AMENT_PREFIX_PATH`` runs unchanged. Global parameters
+(``<set_parameter>``, ``<set_parameters_from_file>``) come first, as ``-p NAME:=VALUE`` and
+``--params-file FILE`` in the order they were set; then each of the node's own parameters in
+document order: a generated params file for every ``<param name>`` (every dict in Python), the
+file itself for every ``<param from>``. The last one to set a name wins.
 """
 
 from __future__ import annotations
 
 import os
 from dataclasses import dataclass
-from typing import TYPE_CHECKING, Any
+from typing import TYPE_CHECKING
 
 from launchkit.description.actions.base import Action
 from launchkit.description.actions.executable import ProcessBuilder, ProcessOptions
-from launchkit.description.actions.parameters import (
-    ParamEntry,
-    evaluate_params,
-    nest,
-    typed_value,
-)
+from launchkit.description.actions.parameters import ParamEntry, evaluate_params
 from launchkit.description.actions.ros_scope import NAMESPACE_CONFIGURATION, join_namespace
 from launchkit.description.command_line import split_command
 from launchkit.description.process_spec import ProcessSpec
@@ -79,6 +78,8 @@ class ExecuteNode(Action):
         else:
             program = [executable]
         argv = program + (split_command(self.args, context, self.location) if self.args else [])
+        if self.ros_args is not None:  # its own --ros-args section, as launch_ros writes it
+            argv += ["--ros-args", *split_command(self.ros_args, context, self.location)]
         ros_args, files = self._ros_arguments(context)
         if ros_args:
             argv += ["--ros-args", *ros_args]
@@ -95,33 +96,38 @@ class ExecuteNode(Action):
 
         out: list[str] = []
         files: dict[str, str] = {}
-        if self.ros_args is not None:
-            out += split_command(self.ros_args, context, self.location)
         if self.node_name is not None:
             out += ["-r", f"__node:={perform(self.node_name, context)}"]
         namespace = self._namespace(context)
         if namespace:
             out += ["-r", f"__ns:={namespace}"]
-        params: dict[str, Any] = {
-            name: typed_value(value, None, self.location)
-            for name, value in context.scope.global_params
-        }
-        node_values, node_files = evaluate_params(self.params, context)
-        params.update(node_values)
-        for global_file in context.scope.params_files:
-            out += ["--params-file", global_file]
-        if params:
-            text = yaml.safe_dump({"/**": {"ros__parameters": nest(params)}}, sort_keys=False)
-            path = context.write_scratch_file("params_", ".yaml", text)
-            files[str(path)] = text
-            out += ["--params-file", str(path)]
-        for file in node_files:
-            out += ["--params-file", str(file)]
+        for item in context.scope.global_params:
+            if isinstance(item, tuple):
+                out += ["-p", f"{item[0]}:={item[1]}"]
+            else:
+                out += ["--params-file", os.path.abspath(item)]
+        node_name = self._params_key(context, namespace)
+        for params in evaluate_params(self.params, context):
+            if isinstance(params, dict):
+                text = yaml.safe_dump(
+                    {node_name: {"ros__parameters": params}}, default_flow_style=False
+                )
+                path = context.write_scratch_file("params_", ".yaml", text)
+                files[str(path)] = text
+                params = path
+            out += ["--params-file", str(params)]
         for src, dst in context.scope.remaps:
             out += ["-r", f"{src}:={dst}"]
         for remap in self.remaps:
             out += ["-r", f"{perform(remap.src, context)}:={perform(remap.dst, context)}"]
         return out, files
+
+    def _params_key(self, context: LaunchContext, namespace: str) -> str:
+        """The node key of its generated params files: its full name when both its name and
+        namespace are known (as launch_ros writes it), else ``/**``."""
+        if self.node_name is None or not namespace:
+            return "/**"
+        return join_namespace(namespace, perform(self.node_name, context))
 
     def _namespace(self, context: LaunchContext) -> str:
         base = context.configurations.get(NAMESPACE_CONFIGURATION, "")

@@ -87,7 +87,7 @@ class SetParametersFromFile(Action):
 
     def execute(self, context: LaunchContext) -> None:
         """Record it in the scope."""
-        context.scope.params_files.append(perform(self.filename, context))
+        context.scope.global_params.append(perform(self.filename, context))
 
 
 class SetRemap(Action):

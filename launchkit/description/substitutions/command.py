@@ -15,6 +15,21 @@ if TYPE_CHECKING:
     from launchkit.description.launch_context import LaunchContext
 
 ON_STDERR = ("fail", "ignore", "warn", "capture")
+QUOTED_LINES = 4  # of a failing program's stderr: its last words, not a whole traceback
+
+
+def last_words(stderr: str) -> tuple[str, list[str]]:
+    """How to show a program's stderr in an error: one line inline (``": oops"``), or the
+    last :data:`QUOTED_LINES` lines to quote under a headline that says how many there were."""
+    lines = [line.rstrip() for line in stderr.strip().splitlines() if line.strip()]
+    if not lines:
+        return "", []
+    if len(lines) == 1:
+        return f": {lines[0].strip()}", []
+    if len(lines) <= QUOTED_LINES:
+        return "; on stderr:", lines
+    return f"; the last {QUOTED_LINES} of its {len(lines)} lines on stderr:", lines[-QUOTED_LINES:]
+
 
 #: What a command may write (stdout and stderr together) before it is stopped as runaway.
 MAX_OUTPUT = 64 * 1024 * 1024
@@ -59,14 +74,15 @@ class Command(Call):
             raise self.fail(f"command {text!r} wrote more than {MAX_OUTPUT >> 20} MB: stopped")
         stdout = out.decode(errors="replace")
         stderr = err.decode(errors="replace").strip()
+        said, quoted = last_words(stderr)
         if code != 0:
-            detail = f": {stderr}" if stderr else ""
-            raise self.fail(f"command {text!r} failed with exit code {code}{detail}")
+            raise self.fail(f"command {text!r} failed with exit code {code}{said}", quoted=quoted)
         if stderr:
             if on_stderr == "fail":
                 raise self.fail(
-                    f"command {text!r} wrote to stderr: {stderr}",
+                    f"command {text!r} wrote to stderr{said}",
                     expected="no stderr output, or $(command '...' warn|ignore|capture)",
+                    quoted=quoted,
                 )
             if on_stderr == "warn":
                 context.log("WARNING", f"command {text!r} wrote to stderr: {stderr}")

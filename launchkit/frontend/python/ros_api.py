@@ -53,17 +53,17 @@ def _param_entries(parameters: Iterable[Any]) -> list[ParamEntry]:
     entries: list[ParamEntry] = []
     for item in parameters:
         if isinstance(item, Mapping):
-            entries.extend(_dict_entries(item))
+            entries.append(lk.ParamDict(_dict_entries(item)))  # one params file, as launch_ros
         else:
             entries.append(lk.ParamFile(to_value(item), False, here()))
     return entries
 
 
-def _dict_entries(values: Mapping[Any, Any]) -> list[ParamEntry]:
-    entries: list[ParamEntry] = []
+def _dict_entries(values: Mapping[Any, Any]) -> list[lk.ParamValue | lk.ParamGroup]:
+    entries: list[lk.ParamValue | lk.ParamGroup] = []
     for name, value in values.items():
         if isinstance(value, Mapping):
-            entries.append(lk.ParamGroup(to_value(name), list(_dict_entries(value))))  # type: ignore[arg-type]
+            entries.append(lk.ParamGroup(to_value(name), _dict_entries(value)))
             continue
         if isinstance(value, bool | int | float | list | tuple) and not isinstance(
             value, SubstitutionLike

@@ -16,7 +16,7 @@ from launchkit.description.actions import (
     SetRemap,
     SetUseSimTime,
 )
-from launchkit.description.actions.parameters import PARAM_TYPES
+from launchkit.description.actions.parameters import PARAM_TYPES, ParamEntry
 from launchkit.frontend.tags.launch import leaf, only_children, parse_process_options
 
 if TYPE_CHECKING:
@@ -85,7 +85,7 @@ def parse_node(entity: Entity, parser: ActionParser) -> Action:
     """``<node pkg exec name namespace exec_name args ros_args ...>`` with ``<param>``,
     ``<remap>`` and ``<env>`` children."""
     children = only_children(entity, ("param", "remap", "env"))
-    params = [parse_param(c) for c in children if c.tag == "param"]
+    params: list[ParamEntry] = [parse_param(c) for c in children if c.tag == "param"]
     remaps = []
     for child in children:
         if child.tag == "remap":

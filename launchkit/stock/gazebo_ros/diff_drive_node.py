@@ -10,7 +10,6 @@ alone: ``launchkit exec gazebo_ros diff_drive --ros-args -p entity:=NAME -p left
 from __future__ import annotations
 
 import importlib
-import sys
 from typing import Any
 
 from launchkit.errors import UserError
@@ -161,4 +160,4 @@ def main(argv: list[str]) -> int:
 
 
 if __name__ == "__main__":
-    sys.exit(_entry.run(main, "diff_drive"))
+    _entry.run(main, "diff_drive")
