@@ -1,15 +1,23 @@
 """The name of every ``LAUNCHKIT_*`` environment variable, in one place.
 
-=================================  =================================================================
-``LAUNCHKIT_ROUTER``               the Zenoh router every node connects to (``tcp/HOST:PORT``,
-                                   default ``tcp/127.0.0.1:7447``); ``launchkit run`` sets it for
-                                   the processes it starts
-``LAUNCHKIT_SUPERVISOR_SOCKET``    the launcher's child-request socket, set by ``launchkit run``
-                                   for its processes (:mod:`launchkit.runtime.supervisor_client`)
-``LAUNCHKIT_TIMEOUT_SCALE``        multiplies every wait of the pytest plugin (slow machines)
-``LAUNCHKIT_VIEWER_PORT``          the rviz2 stand-in's viewer (HTTP + WebSocket) port when
-                                   neither ``--port`` nor its ``port`` parameter is given
-=================================  =================================================================
+====================================  ==============================================================
+``LAUNCHKIT_ROUTER``                  the Zenoh router every node connects to (``tcp/HOST:PORT``,
+                                      default ``tcp/127.0.0.1:7447``); ``launchkit run`` sets it for
+                                      the processes it starts
+``LAUNCHKIT_ROUTER_AUTOSTART``        ``0``: a process that finds no router at its loopback endpoint
+                                      waits for one instead of starting the shared background
+                                      router (``launchkit run`` sets it for its processes: the
+                                      launch owns its router)
+``LAUNCHKIT_ROUTER_IDLE_TIMEOUT``     seconds the shared background router stays up with nothing
+                                      connected (default 300; 0: until ``launchkit router stop``)
+``LAUNCHKIT_ROUTER_TRUSTED_USERS``    users (names or uids, comma-separated) whose router a process
+                                      may join; another user's router is refused otherwise
+``LAUNCHKIT_SUPERVISOR_SOCKET``       the launcher's child-request socket, set by ``launchkit run``
+                                      for its processes (:mod:`launchkit.runtime.supervisor_client`)
+``LAUNCHKIT_TIMEOUT_SCALE``           multiplies every wait of the pytest plugin (slow machines)
+``LAUNCHKIT_VIEWER_PORT``             the rviz2 stand-in's viewer (HTTP + WebSocket) port when
+                                      neither ``--port`` nor its ``port`` parameter is given
+====================================  ==============================================================
 
 Other variables launchkit reads keep the names ROS gives them (``ROS_DOMAIN_ID``,
 ``ROS_LOG_DIR``, ``AMENT_PREFIX_PATH``, ``RCUTILS_LOGGING_USE_STDOUT``, ...).
@@ -18,6 +26,9 @@ Other variables launchkit reads keep the names ROS gives them (``ROS_DOMAIN_ID``
 from __future__ import annotations
 
 ROUTER = "LAUNCHKIT_ROUTER"
+ROUTER_AUTOSTART = "LAUNCHKIT_ROUTER_AUTOSTART"
+ROUTER_IDLE_TIMEOUT = "LAUNCHKIT_ROUTER_IDLE_TIMEOUT"
+ROUTER_TRUSTED_USERS = "LAUNCHKIT_ROUTER_TRUSTED_USERS"
 SUPERVISOR_SOCKET = "LAUNCHKIT_SUPERVISOR_SOCKET"
 TIMEOUT_SCALE = "LAUNCHKIT_TIMEOUT_SCALE"
 VIEWER_PORT = "LAUNCHKIT_VIEWER_PORT"

@@ -22,47 +22,24 @@ from typing import Any, cast
 
 import zenoh
 
-from launchkit.envvars import ROUTER
 from launchkit.errors import UserError
+from launchkit.ros.endpoints import (
+    DEFAULT_ROUTER,
+    EndpointError,
+    host_port,
+    router_endpoint,
+    validate_endpoint,
+)
 from launchkit.ros.logging import get_logger
 
 SESSION_CONFIG_ENV = "ZENOH_SESSION_CONFIG_URI"
 ROUTER_CONFIG_ENV = "ZENOH_ROUTER_CONFIG_URI"
 CONFIG_OVERRIDE_ENV = "ZENOH_CONFIG_OVERRIDE"
-DEFAULT_ROUTER = "tcp/127.0.0.1:7447"
 LOOPBACK_LISTEN = "tcp/127.0.0.1:0"
-
-
-class EndpointError(UserError):
-    """A malformed router endpoint."""
 
 
 class ZenohConfigError(UserError):
     """A Zenoh configuration file named by ``ZENOH_*_CONFIG_URI`` that cannot be used."""
-
-
-def router_endpoint(endpoint: str | None = None) -> str:
-    """The router endpoint: ``endpoint``, else ``$LAUNCHKIT_ROUTER``, else the default."""
-    value = endpoint or os.environ.get(ROUTER) or DEFAULT_ROUTER
-    return validate_endpoint(value)
-
-
-def validate_endpoint(endpoint: str) -> str:
-    """``endpoint`` if it looks like ``tcp/HOST:PORT`` (or udp/quic/tls), else an error."""
-    proto, sep, address = endpoint.partition("/")
-    host, colon, port = address.rpartition(":")
-    if not sep or proto not in ("tcp", "udp", "tls", "quic") or not colon or not host:
-        raise EndpointError(f"invalid router endpoint {endpoint!r}", expected="tcp/HOST:PORT")
-    if not port.isdigit() or not 0 < int(port) < 65536:
-        raise EndpointError(f"invalid port in router endpoint {endpoint!r}", expected="1..65535")
-    return endpoint
-
-
-def host_port(endpoint: str) -> tuple[str, int]:
-    """(host, port) of ``proto/HOST:PORT`` (IPv6 brackets removed)."""
-    address = endpoint.partition("/")[2]
-    host, _, port = address.rpartition(":")
-    return host.strip("[]"), int(port)
 
 
 def _base_config(mode: str) -> zenoh.Config:
@@ -195,6 +172,24 @@ def close_all() -> None:
         if not session.is_closed():
             session.close()  # type: ignore[no-untyped-call]
 
+
+# re-exported: the endpoint helpers lived here first
+__all__ = [
+    "DEFAULT_ROUTER",
+    "EndpointError",
+    "ZenohConfigError",
+    "apply_overrides",
+    "close_all",
+    "close_session",
+    "host_port",
+    "open_session",
+    "parse_overrides",
+    "peer_config",
+    "router_config",
+    "router_endpoint",
+    "validate_endpoint",
+    "wait_for_router",
+]
 
 # zenoh logs transient connection races (two peers dialing each other) at ERROR level; they
 # are harmless, so stay quiet unless the user asks with RUST_LOG

@@ -5,6 +5,7 @@ from __future__ import annotations
 from typing import TYPE_CHECKING, Any, Protocol
 
 from launchkit.envvars import ROUTER as ROUTER_ENV
+from launchkit.envvars import ROUTER_AUTOSTART as AUTOSTART_ENV
 
 if TYPE_CHECKING:
     from launchkit.description.launch_context import Runner
@@ -15,13 +16,20 @@ class RouterHandle(Protocol):
 
     endpoint: str
     hosted: bool
+    shared: bool
 
     def close(self) -> None:
         """Stop the router (when this process hosts it)."""
 
 
 class NodeNetwork:
-    """Starts the router once, when the first node starts, and tells nodes where it is."""
+    """Starts the router once, when the first node starts, and tells nodes where it is.
+
+    The launch owns its network: it hosts the router for as long as it runs, or joins one of
+    this user's already listening at the endpoint (the shared background router, say), and its
+    processes never start a router of their own (``LAUNCHKIT_ROUTER_AUTOSTART=0``): a ROS
+    program started before the first node waits for the launch's router.
+    """
 
     def __init__(self, endpoint: str | None = None) -> None:
         self.endpoint = endpoint
@@ -32,8 +40,11 @@ class NodeNetwork:
         if self._router is None:
             self._router = _start_router(self.endpoint)
             verb = "started" if self._router.hosted else "joined"
-            runner.log("INFO", "launch", f"{verb} the ROS router at {self._router.endpoint}")
-        return {ROUTER_ENV: self._router.endpoint}
+            shared = " shared" if self._router.shared else ""
+            runner.log(
+                "INFO", "launch", f"{verb} the{shared} ROS router at {self._router.endpoint}"
+            )
+        return {ROUTER_ENV: self._router.endpoint, AUTOSTART_ENV: "0"}
 
     def known(self) -> dict[str, str]:
         """Environment additions for any other process: where the router is or will be, when
@@ -42,9 +53,12 @@ class NodeNetwork:
         A plain ``<executable>`` may still be a ROS program (gazebo_ros's ``gzserver`` is an
         ``ExecuteProcess``); in ROS it finds the others through DDS, here it needs the address.
         """
+        environment = {AUTOSTART_ENV: "0"}
         if self._router is not None:
-            return {ROUTER_ENV: self._router.endpoint}
-        return {ROUTER_ENV: self.endpoint} if self.endpoint else {}
+            environment[ROUTER_ENV] = self._router.endpoint
+        elif self.endpoint:
+            environment[ROUTER_ENV] = self.endpoint
+        return environment
 
     def close(self) -> None:
         """Stop the router if this launch hosts it."""
