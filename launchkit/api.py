@@ -6,7 +6,7 @@ import os
 import sys
 from collections.abc import Mapping
 from pathlib import Path
-from typing import IO
+from typing import IO, TYPE_CHECKING
 
 from launchkit.checks import CheckedTree, check_tree, undeclared_arguments
 from launchkit.description.launch_context import LaunchContext, Runner
@@ -14,6 +14,9 @@ from launchkit.errors import PackageNotFoundError
 from launchkit.frontend.launch_loader import LaunchLoader
 from launchkit.packages import PackageIndex
 from launchkit.runtime.hooks import SupervisorHooks
+
+if TYPE_CHECKING:
+    from launchkit.runtime.network import RouterOptions
 
 
 def resolve_launch_file(target: str, filename: str | None, packages: PackageIndex) -> Path:
@@ -133,6 +136,7 @@ def run(
     *,
     stream: IO[str] | None = None,
     router: str | None = None,
+    router_options: RouterOptions | None = None,
     hooks: SupervisorHooks | None = None,
     bridge: bool = False,
 ) -> int:
@@ -141,6 +145,8 @@ def run(
     User mistakes found before anything starts raise :class:`launchkit.errors.UserError`.
     ``hooks`` observes the launch as it runs (the test plugin's event channel uses it).
     ``bridge`` also runs ``launchkit bridge`` (to a ROS 2 DDS graph) under supervision.
+    ``router_options``: what the launch's router adds to reach other hosts (default: the
+    ``LAUNCHKIT_ROUTER_*`` variables).
     """
     from launchkit.runtime.logdir import create_run_dir
     from launchkit.runtime.network import NodeNetwork
@@ -165,7 +171,7 @@ def run(
             f"argument '{name}' is not declared or used by "
             f"{path.name} (or the files it includes statically)",
         )
-    supervisor = Supervisor(output, network=NodeNetwork(router), hooks=hooks)
+    supervisor = Supervisor(output, network=NodeNetwork(router, router_options), hooks=hooks)
     context = _context(supervisor, arguments, packages, loader, run_dir)
     try:
         return supervisor.run(tree.top, context)

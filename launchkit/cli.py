@@ -66,6 +66,9 @@ def build_parser() -> argparse.ArgumentParser:
         help='show every process\'s output on the screen (output="both")',
     )
     run.add_argument("--router", help="Zenoh router endpoint to host or join (tcp/HOST:PORT)")
+    from launchkit.ros_cli.router_options import add_federation_options
+
+    add_federation_options(run)
     run.add_argument(
         "--bridge",
         action="store_true",
@@ -193,8 +196,18 @@ def _launch(args: argparse.Namespace, hooks: SupervisorHooks | None = None) -> i
         return 0
     if args.show_all_subprocesses_output:
         os.environ["OVERRIDE_LAUNCH_PROCESS_OUTPUT"] = "both"
+    from launchkit.ros_cli.router_options import federation_asked, federation_options
+
+    options = federation_options(args) if federation_asked(args) else None
     try:
-        return api.run(path, arguments, router=args.router, hooks=hooks, bridge=args.bridge)
+        return api.run(
+            path,
+            arguments,
+            router=args.router,
+            router_options=options,
+            hooks=hooks,
+            bridge=args.bridge,
+        )
     except LaunchkitError as error:
         error.exit_status = 2  # raised before anything started: the input is at fault
         raise

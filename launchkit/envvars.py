@@ -4,6 +4,14 @@
 ``LAUNCHKIT_ROUTER``                  the Zenoh router every node connects to (``tcp/HOST:PORT``,
                                       default ``tcp/127.0.0.1:7447``); ``launchkit run`` sets it for
                                       the processes it starts
+``LAUNCHKIT_ROUTER_LISTEN``           more endpoints every router launchkit hosts listens at, for
+                                      other hosts (``tls/0.0.0.0:7448``; comma/space-separated)
+``LAUNCHKIT_ROUTER_CONNECT``          routers of other hosts that every router launchkit hosts
+                                      connects to
+``LAUNCHKIT_ROUTER_TLS``              a folder with ``ca.pem``, ``cert.pem``, ``key.pem``: TLS for
+                                      ``tls/`` endpoints
+``LAUNCHKIT_ROUTER_MTLS``             the same folder, and clients must show a certificate too
+``LAUNCHKIT_ROUTER_ACCESS``           a JSON5 file with Zenoh's ``access_control`` section
 ``LAUNCHKIT_ROUTER_AUTOSTART``        ``0``: a process that finds no router at its loopback endpoint
                                       waits for one instead of starting the shared background
                                       router (``launchkit run`` sets it for its processes: the
@@ -26,6 +34,11 @@ Other variables launchkit reads keep the names ROS gives them (``ROS_DOMAIN_ID``
 from __future__ import annotations
 
 ROUTER = "LAUNCHKIT_ROUTER"
+ROUTER_LISTEN = "LAUNCHKIT_ROUTER_LISTEN"
+ROUTER_CONNECT = "LAUNCHKIT_ROUTER_CONNECT"
+ROUTER_TLS = "LAUNCHKIT_ROUTER_TLS"
+ROUTER_MTLS = "LAUNCHKIT_ROUTER_MTLS"
+ROUTER_ACCESS = "LAUNCHKIT_ROUTER_ACCESS"
 ROUTER_AUTOSTART = "LAUNCHKIT_ROUTER_AUTOSTART"
 ROUTER_IDLE_TIMEOUT = "LAUNCHKIT_ROUTER_IDLE_TIMEOUT"
 ROUTER_TRUSTED_USERS = "LAUNCHKIT_ROUTER_TRUSTED_USERS"

@@ -30,7 +30,7 @@ ALLOWED: dict[str, tuple[str, ...]] = {
     "launchkit.frontend": ("launchkit.description", "launchkit.errors", "launchkit.packages"),
     "launchkit.description": ("launchkit.errors", "launchkit.packages"),
     "launchkit.runtime": ("launchkit.description", "launchkit.envvars", "launchkit.errors",
-                          "launchkit.ros.router"),
+                          "launchkit.ros.federation", "launchkit.ros.router"),
     "launchkit.ros": ("launchkit.envvars", "launchkit.errors"),
     "launchkit.ros_cli": ("launchkit.envvars", "launchkit.errors", "launchkit.ros"),
     "launchkit.stock": ("launchkit.envvars", "launchkit.errors", "launchkit.packages",

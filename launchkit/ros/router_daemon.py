@@ -70,8 +70,13 @@ def _serve(endpoint: str, idle: float, log: str, log_fd: int) -> int:
 
     for signum in (signal.SIGINT, signal.SIGTERM):
         signal.signal(signum, on_signal)
+
+    def report(level: str, message: str) -> None:
+        getattr(logger, level)(message)
+
     try:
-        handle = start_router(endpoint, lock=False)  # the starter holds the lock
+        # federation settings, if any, come from the LAUNCHKIT_ROUTER_* variables
+        handle = start_router(endpoint, lock=False, report=report)  # the starter holds the lock
     except LaunchkitError as error:
         print(f"error: {error.message}", flush=True)
         return 1
@@ -84,6 +89,8 @@ def _serve(endpoint: str, idle: float, log: str, log_fd: int) -> int:
     _to_log(log_fd)
     lifetime = f"exits after {idle:g} s with nothing connected" if idle else "runs until stopped"
     logger.info(f"shared ROS router listening at {endpoint} (pid {os.getpid()}; {lifetime})")
+    for warning in handle.warnings:
+        logger.warn(warning)
     try:
         _run_until_idle(handle, idle, stop)
         if not stop.is_set():

@@ -30,6 +30,7 @@ from launchkit.ros.endpoints import (
     router_endpoint,
     validate_endpoint,
 )
+from launchkit.ros.federation import RouterOptions, RouterOptionsError
 from launchkit.ros.logging import get_logger
 
 SESSION_CONFIG_ENV = "ZENOH_SESSION_CONFIG_URI"
@@ -77,18 +78,53 @@ def peer_config(endpoint: str | None = None) -> zenoh.Config:
     return apply_overrides(config)
 
 
-def router_config(endpoint: str) -> zenoh.Config:
-    """The router's configuration: listen on ``endpoint`` only, no multicast scouting.
+def router_config(endpoint: str, options: RouterOptions | None = None) -> zenoh.Config:
+    """The router's configuration: listen on ``endpoint`` only, no multicast scouting; with
+    ``options``, also the endpoints, TLS and access control that reach other hosts.
 
-    ``$ZENOH_ROUTER_CONFIG_URI`` replaces it with a file, and ``$ZENOH_CONFIG_OVERRIDE``
+    ``$ZENOH_ROUTER_CONFIG_URI`` replaces it with a file (used as is: ``options`` add their
+    endpoints to the file's and set only the keys they name), and ``$ZENOH_CONFIG_OVERRIDE``
     changes keys of either, as rmw_zenoh's router does.
     """
     config = _config_file(ROUTER_CONFIG_ENV)
+    from_file = config is not None
     if config is None:
         config = _base_config("router")
         config.insert_json5("listen/endpoints", json.dumps([endpoint]))
         config.insert_json5("connect/endpoints", "[]")
+    if options is not None and not options.empty:
+        _apply_options(config, endpoint, options, from_file)
     return apply_overrides(config)
+
+
+def _apply_options(
+    config: zenoh.Config, endpoint: str, options: RouterOptions, from_file: bool
+) -> None:
+    settings = options.settings(endpoint)
+    if from_file:  # the file says where the router listens; the options add to its lists
+        settings["listen/endpoints"] = list(options.listen)
+        for key in ("listen/endpoints", "connect/endpoints"):
+            settings[key] = list(dict.fromkeys([*_router_endpoints(config, key), *settings[key]]))
+    for key, value in settings.items():
+        _insert(config, key, json.dumps(value), "a valid Zenoh setting")
+    access = options.access_control()
+    if access is not None:
+        expected = f"Zenoh's access_control section in {options.access}"
+        _insert(config, "access_control", access, expected)
+
+
+def _router_endpoints(config: zenoh.Config, key: str) -> list[str]:
+    """A router's ``listen``/``connect`` endpoints (Zenoh also allows one list per mode)."""
+    value = json.loads(config.get_json(key))
+    return list(value.get("router", []) if isinstance(value, dict) else value)
+
+
+def _insert(config: zenoh.Config, key: str, json5: str, expected: str) -> None:
+    try:
+        config.insert_json5(key, json5)
+    except Exception as exc:  # zenoh raises a bare ZError
+        message = f"cannot set the router's {key}: {exc}"
+        raise RouterOptionsError(message, expected=expected) from None
 
 
 def _config_file(variable: str) -> zenoh.Config | None:

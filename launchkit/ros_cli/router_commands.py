@@ -12,6 +12,7 @@ from typing import Any
 from launchkit.envvars import ROUTER, ROUTER_IDLE_TIMEOUT
 from launchkit.errors import RuntimeLaunchError, UserError
 from launchkit.ros.endpoints import host_port, is_loopback, router_endpoint
+from launchkit.ros.federation import RouterOptions, describe
 from launchkit.ros.port_owner import (
     command_line,
     connections_to,
@@ -25,6 +26,7 @@ from launchkit.ros.shared_router import (
     start_shared_router,
     stop_shared_router,
 )
+from launchkit.ros_cli.router_options import add_federation_options, federation_options
 
 
 def add_parser(commands: Any) -> None:
@@ -52,6 +54,7 @@ def add_parser(commands: Any) -> None:
         help="exit after this long with nothing connected (0: never; default: never in the "
         f"foreground, ${ROUTER_IDLE_TIMEOUT} or 300 for the shared router)",
     )
+    add_federation_options(p)
     p.add_argument("--debug", action="store_true", help=argparse.SUPPRESS)
     p.set_defaults(run=_run)
 
@@ -64,9 +67,16 @@ def _run(args: argparse.Namespace) -> int:
         return _status(endpoint)
     if args.verb == "stop":
         return _stop(endpoint)
+    options = federation_options(args)
     if args.verb == "start":
+        if not options.empty:
+            raise UserError(
+                "the shared router takes its federation settings from the LAUNCHKIT_ROUTER_* "
+                "variables only",
+                expected="`launchkit router --listen/--connect ...` (in the foreground) instead",
+            )
         return _start(endpoint, args.idle_timeout)
-    return _foreground(endpoint, args.idle_timeout or 0.0)
+    return _foreground(endpoint, args.idle_timeout or 0.0, options)
 
 
 def _start(endpoint: str, idle: float | None) -> int:
@@ -128,12 +138,21 @@ def _stop(endpoint: str) -> int:
     )
 
 
-def _foreground(endpoint: str, idle: float) -> int:
+def _say(level: str, message: str) -> None:
+    print(f"[{level.upper()}] [router]: {message}", flush=True)
+
+
+def _foreground(endpoint: str, idle: float, options: RouterOptions) -> int:
     from launchkit.ros.router import start_router
 
-    handle = start_router(endpoint)
+    handle = start_router(endpoint, options=options, report=_say)
     if not handle.hosted:
         raise RuntimeLaunchError(f"a router already listens at {endpoint}")
+    print(f"[INFO] [router]: listening at {handle.endpoint} (Ctrl-C to stop)", flush=True)
+    for line in describe(options):
+        _say("info", line)
+    for warning in handle.warnings:
+        _say("warn", warning)
     stop = threading.Event()
 
     def on_signal(signum: int, frame: Any) -> None:
@@ -142,7 +161,6 @@ def _foreground(endpoint: str, idle: float) -> int:
     previous = {s: signal.signal(s, on_signal) for s in (signal.SIGINT, signal.SIGTERM)}
     last_used = time.monotonic()
     try:
-        print(f"[INFO] [router]: listening at {handle.endpoint} (Ctrl-C to stop)", flush=True)
         while not stop.wait(1.0):
             if handle.sessions():
                 last_used = time.monotonic()

@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+from collections.abc import Callable
 from typing import TYPE_CHECKING, Any, Protocol
 
 from launchkit.envvars import ROUTER as ROUTER_ENV
@@ -9,6 +10,7 @@ from launchkit.envvars import ROUTER_AUTOSTART as AUTOSTART_ENV
 
 if TYPE_CHECKING:
     from launchkit.description.launch_context import Runner
+    from launchkit.ros.federation import RouterOptions as RouterOptions  # for api's type
 
 
 class RouterHandle(Protocol):
@@ -17,6 +19,7 @@ class RouterHandle(Protocol):
     endpoint: str
     hosted: bool
     shared: bool
+    warnings: list[str]
 
     def close(self) -> None:
         """Stop the router (when this process hosts it)."""
@@ -31,19 +34,31 @@ class NodeNetwork:
     program started before the first node waits for the launch's router.
     """
 
-    def __init__(self, endpoint: str | None = None) -> None:
+    def __init__(self, endpoint: str | None = None, options: RouterOptions | None = None) -> None:
         self.endpoint = endpoint
+        self.options = options  # None: the LAUNCHKIT_ROUTER_* variables say
         self._router: RouterHandle | None = None
 
     def ensure(self, runner: Runner) -> dict[str, str]:
         """Environment additions for a node process (starting the router if needed)."""
         if self._router is None:
-            self._router = _start_router(self.endpoint)
-            verb = "started" if self._router.hosted else "joined"
-            shared = " shared" if self._router.shared else ""
-            runner.log(
-                "INFO", "launch", f"{verb} the{shared} ROS router at {self._router.endpoint}"
-            )
+
+            def report(level: str, message: str) -> None:  # called from the router's thread
+                runner.log("WARNING" if level == "warn" else "INFO", "launch", message)
+
+            self._router = router = _start_router(self.endpoint, self.options, report)
+            verb = "started" if router.hosted else "joined"
+            shared = " shared" if router.shared else ""
+            runner.log("INFO", "launch", f"{verb} the{shared} ROS router at {router.endpoint}")
+            for warning in router.warnings:
+                runner.log("WARNING", "launch", warning)
+            if not router.hosted and self.options is not None and not self.options.empty:
+                runner.log(
+                    "WARNING",
+                    "launch",
+                    f"the router at {router.endpoint} was already running: this launch's "
+                    "--listen/--connect/--tls settings apply only to a router it starts",
+                )
         return {ROUTER_ENV: self._router.endpoint, AUTOSTART_ENV: "0"}
 
     def known(self) -> dict[str, str]:
@@ -67,11 +82,13 @@ class NodeNetwork:
             self._router = None
 
 
-def _start_router(endpoint: str | None) -> Any:
+def _start_router(
+    endpoint: str | None, options: RouterOptions | None, report: Callable[[str, str], None]
+) -> Any:
     # zenoh is heavy: imported only when the first node starts
     from launchkit.ros.router import start_router
 
-    return start_router(endpoint)
+    return start_router(endpoint, options=options, report=report)
 
 
 # ROUTER_ENV stays importable from here for launchkit.testing (its name is in launchkit.envvars).
