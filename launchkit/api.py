@@ -139,6 +139,8 @@ def run(
     router_options: RouterOptions | None = None,
     hooks: SupervisorHooks | None = None,
     bridge: bool = False,
+    agent_key: str | None = None,
+    remote_grace: str | None = None,
 ) -> int:
     """Run ``path`` until everything it started has stopped; the exit status.
 
@@ -146,14 +148,18 @@ def run(
     ``hooks`` observes the launch as it runs (the test plugin's event channel uses it).
     ``bridge`` also runs ``launchkit bridge`` (to a ROS 2 DDS graph) under supervision.
     ``router_options``: what the launch's router adds to reach other hosts (default: the
-    ``LAUNCHKIT_ROUTER_*`` variables).
+    ``LAUNCHKIT_ROUTER_*`` variables). ``agent_key`` and ``remote_grace`` (seconds) are for the
+    processes that ``<group machine=...>`` puts on other hosts (``docs/multi-host.md``).
     """
+    from launchkit.remote.launch import RemoteLaunch
     from launchkit.runtime.logdir import create_run_dir
     from launchkit.runtime.network import NodeNetwork
     from launchkit.runtime.output import Output
     from launchkit.runtime.supervisor import Supervisor
 
     arguments = dict(arguments or {})
+    network = NodeNetwork(router, router_options)
+    remote = RemoteLaunch(network, agent_key, remote_grace)
     packages, loader = PackageIndex(), LaunchLoader()
     tree = check_tree(path, arguments, loader, packages)
     if bridge:
@@ -171,9 +177,11 @@ def run(
             f"argument '{name}' is not declared or used by "
             f"{path.name} (or the files it includes statically)",
         )
-    supervisor = Supervisor(output, network=NodeNetwork(router, router_options), hooks=hooks)
+    supervisor = Supervisor(output, network=network, hooks=hooks, remote_factory=remote.factory)
+    remote.bind(supervisor)
     context = _context(supervisor, arguments, packages, loader, run_dir)
     try:
         return supervisor.run(tree.top, context)
     finally:
+        remote.close()
         output.close()

@@ -20,6 +20,11 @@
                                       connected (default 300; 0: until ``launchkit router stop``)
 ``LAUNCHKIT_ROUTER_TRUSTED_USERS``    users (names or uids, comma-separated) whose router a process
                                       may join; another user's router is refused otherwise
+``LAUNCHKIT_AGENT_KEY``               the key file shared by ``launchkit agent`` and the launchers
+                                      that use it (default ``~/.config/launchkit/agent.key``)
+``LAUNCHKIT_AGENT_TIMEOUT``           seconds a launch waits for an agent to appear (default 30)
+``LAUNCHKIT_REMOTE_GRACE``            seconds an agent keeps a launch's processes once it lost the
+                                      launcher (killed, or the link cut; default 10)
 ``LAUNCHKIT_SUPERVISOR_SOCKET``       the launcher's child-request socket, set by ``launchkit run``
                                       for its processes (:mod:`launchkit.runtime.supervisor_client`)
 ``LAUNCHKIT_TIMEOUT_SCALE``           multiplies every wait of the pytest plugin (slow machines)
@@ -43,5 +48,8 @@ ROUTER_AUTOSTART = "LAUNCHKIT_ROUTER_AUTOSTART"
 ROUTER_IDLE_TIMEOUT = "LAUNCHKIT_ROUTER_IDLE_TIMEOUT"
 ROUTER_TRUSTED_USERS = "LAUNCHKIT_ROUTER_TRUSTED_USERS"
 SUPERVISOR_SOCKET = "LAUNCHKIT_SUPERVISOR_SOCKET"
+AGENT_KEY = "LAUNCHKIT_AGENT_KEY"
+AGENT_TIMEOUT = "LAUNCHKIT_AGENT_TIMEOUT"
+REMOTE_GRACE = "LAUNCHKIT_REMOTE_GRACE"
 TIMEOUT_SCALE = "LAUNCHKIT_TIMEOUT_SCALE"
 VIEWER_PORT = "LAUNCHKIT_VIEWER_PORT"

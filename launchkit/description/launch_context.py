@@ -38,6 +38,7 @@ class Scope:
     global_params: list[tuple[str, str]] = field(default_factory=list)
     params_files: list[str] = field(default_factory=list)
     remaps: list[tuple[str, str]] = field(default_factory=list)
+    machine: str = ""  # ``<group machine>``: the host its processes run on ("" for this one)
 
     def copy(self) -> Scope:
         """An independent copy (what a timer captures)."""

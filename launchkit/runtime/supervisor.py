@@ -59,6 +59,7 @@ class Supervisor:
         clock: Callable[[], float] = time.monotonic,
         hooks: SupervisorHooks | None = None,
         process_factory: ProcessFactory | None = None,
+        remote_factory: ProcessFactory | None = None,
     ) -> None:
         self.output = output
         self.hooks = hooks or SupervisorHooks()
@@ -81,6 +82,8 @@ class Supervisor:
         self._new_process = process_factory or (
             lambda spec, label, index: ManagedProcess(spec, label, index, self._guard.watch)
         )
+        # processes for another host (spec.machine), run by its agent (launchkit.remote)
+        self._new_remote = remote_factory
 
     # -- the Runner protocol (what actions call) ----------------------------------------------
 
@@ -151,7 +154,8 @@ class Supervisor:
                 action.visit(context)
         pending, self._pending = self._pending, None
         for spec in pending:
-            check_program(spec)
+            if not spec.machine:  # another host's programs are its agent's to find
+                check_program(spec)
         self._read_signals()
         for spec in pending:
             if self.shutting_down:
@@ -232,6 +236,12 @@ class Supervisor:
         if self._requests is not None:
             spec.env.update(self._requests.environment())
         index = len(self.processes) + 1
+        if spec.machine:
+            if self._new_remote is None:
+                raise LaunchkitError(
+                    f"'{spec.name}' is for machine {spec.machine!r}: no agents here"
+                )
+            return self._new_remote(spec, f"{spec.name}-{index}", index)
         return self._new_process(spec, f"{spec.name}-{index}", index)
 
     def _spawn(self, process: SupervisedProcess) -> None:

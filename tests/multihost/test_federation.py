@@ -4,6 +4,7 @@ cut link."""
 
 from __future__ import annotations
 
+import time
 from pathlib import Path
 
 from netns import Host, Hosts, Proc
@@ -41,11 +42,11 @@ def test_topics_services_graph_and_latecomers_across_hosts(hosts: Hosts) -> None
     )
     listener_a = hosts.a.start(str(NODES / "listener.py"), "--ros-args", "-r", "chatter:=chatter_b")
     listener_a.expect("heard: hello")
-    # the graph and parameter services of a node on the other host, from the CLI
-    nodes = hosts.b.run("node", "list")
-    assert "/talker\n" in nodes and "/talker_b\n" in nodes
-    assert "/chatter [std_msgs/msg/String]" in hosts.a.run("topic", "list", "-t")
-    assert "use_sim_time" in hosts.b.run("param", "list", "/talker")
+    # the graph and parameter services of a node on the other host, from the CLI (a command
+    # that has just joined may see part of the graph, as ros2's do: ask again until it all is)
+    _until(hosts.b, ["node", "list"], "/talker\n", "/talker_b\n")
+    _until(hosts.a, ["topic", "list", "-t"], "/chatter [std_msgs/msg/String]", "/chatter_b")
+    _until(hosts.b, ["param", "list", "/talker"], "use_sim_time")
     # a transient-local message published on A before anyone on B listened
     latched = hosts.a.start(str(NODES / "latched_listener.py"))
     latched.expect("latched_listener ready")
@@ -77,6 +78,16 @@ def test_a_cut_link_mends(hosts: Hosts) -> None:
     hosts.a.set_link(True)
     b.expect(f"linked to the router at tcp/{hosts.a.address}:7448")
     _hears_again(listener)
+
+
+def _until(host: Host, command: list[str], *texts: str, timeout: float = 60.0) -> None:
+    """Run ``launchkit COMMAND`` on ``host`` until its output holds every text."""
+    deadline = time.monotonic() + timeout
+    while True:
+        out = host.run(*command, check=False)
+        if all(text in out for text in texts):
+            return
+        assert time.monotonic() < deadline, f"`launchkit {' '.join(command)}` said: {out}"
 
 
 def _hears_again(listener: Proc) -> None:

@@ -99,7 +99,9 @@ def parse_group(entity: Entity, parser: ActionParser) -> Action:
             expected='forwarding="false" on the <group>',
             attr=None,
         )
-    return Group(parser.parse_actions(entity, skip=("keep",)), scoped, forwarding, keeps)
+    machine = entity.value("machine")  # launchkit's extension: the host that runs it
+    actions = parser.parse_actions(entity, skip=("keep",))
+    return Group(actions, scoped, forwarding, keeps, machine=machine)
 
 
 def parse_reset(entity: Entity, parser: ActionParser) -> Action:
