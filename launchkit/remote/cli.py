@@ -70,6 +70,12 @@ def main(argv: list[str]) -> int:
         _say("info", line)
     for warning in router.warnings:
         _say("warn", warning)
+    if not router.hosted and not options.empty:
+        _say(
+            "warn",
+            f"joined the router already at {endpoint}: --listen/--connect/--tls/--mtls/--access "
+            "apply only to a router the agent starts (stop that one, or use another --router)",
+        )
     agent = Agent(name, key, endpoint, _say)
     stop = threading.Event()
     interrupts = [0]

@@ -11,7 +11,7 @@ import zenoh
 from launchkit.errors import RuntimeLaunchError
 from launchkit.ros.endpoints import host_port, router_endpoint
 from launchkit.ros.federation import RouterOptions
-from launchkit.ros.router_access import router_answers, tcp_answers
+from launchkit.ros.router_access import router_answers
 from launchkit.ros.router_links import LinkWatch, Report
 from launchkit.ros.rundir import RunDirError, locked, router_file
 from launchkit.ros.session import close_session, open_session, router_config
@@ -51,11 +51,6 @@ class RouterHandle:
         if self._session is not None:
             close_session(self._session)
             self._session = None
-
-
-def is_listening(endpoint: str, timeout: float = 0.2) -> bool:
-    """Whether something accepts TCP connections at ``endpoint``."""
-    return tcp_answers(endpoint, timeout)
 
 
 def start_router(
@@ -114,4 +109,4 @@ def _joined(endpoint: str) -> RouterHandle:
     return RouterHandle(endpoint, hosted=False, shared=SharedRouterState.read(endpoint) is not None)
 
 
-__all__ = ["RouterHandle", "RouterOptions", "is_listening", "start_router"]
+__all__ = ["RouterHandle", "RouterOptions", "start_router"]
