@@ -194,3 +194,20 @@ def test_a_launch_joins_the_shared_router_a_command_started(
     assert echo.proc.wait(timeout=30) == 0
     assert launcher.stop(timeout=15) == 0
     assert SharedRouterState.read(shared) is not None  # the launch leaves it to its idle timeout
+
+
+def test_status_names_a_router_that_is_not_the_shared_one_and_stop_leaves_it(
+    shared: str,
+) -> None:
+    router = start_router(shared)  # hosted by this test process, as a launch hosts one
+    try:
+        status = launchkit("router", "status")
+        assert status.returncode == 0
+        assert f"ROS router at {shared}: pid {os.getpid()} (" in status.stdout
+        assert "not the shared background router" in status.stdout
+        stopped = launchkit("router", "stop")
+        assert stopped.returncode == 1
+        assert "is not the shared background router" in stopped.stderr
+        assert launchkit("router", "status").returncode == 0  # still there
+    finally:
+        router.close()
