@@ -19,6 +19,7 @@ from launchkit.packages import PackageIndex
 from launchkit.runtime.hooks import SupervisorHooks
 
 if TYPE_CHECKING:
+    from launchkit.runtime.network import RouterOptions
     from launchkit.runtime.recorder import Recorded
 
 
@@ -204,21 +205,30 @@ def run(
     *,
     stream: IO[str] | None = None,
     router: str | None = None,
+    router_options: RouterOptions | None = None,
     hooks: SupervisorHooks | None = None,
     bridge: bool = False,
+    agent_key: str | None = None,
+    remote_grace: str | None = None,
 ) -> int:
     """Run ``path`` until everything it started has stopped; the exit status.
 
     User mistakes found before anything starts raise :class:`launchkit.errors.UserError`.
     ``hooks`` observes the launch as it runs (the test plugin's event channel uses it).
     ``bridge`` also runs ``launchkit bridge`` (to a ROS 2 DDS graph) under supervision.
+    ``router_options``: what the launch's router adds to reach other hosts (default: the
+    ``LAUNCHKIT_ROUTER_*`` variables). ``agent_key`` and ``remote_grace`` (seconds) are for the
+    processes that ``<group machine=...>`` puts on other hosts (``docs/multi-host.md``).
     """
+    from launchkit.remote.launch import RemoteLaunch
     from launchkit.runtime.logdir import LogLimits, create_run_dir
     from launchkit.runtime.network import NodeNetwork
     from launchkit.runtime.output import Output
     from launchkit.runtime.supervisor import Supervisor
 
     arguments = dict(arguments or {})
+    network = NodeNetwork(router, router_options)
+    remote = RemoteLaunch(network, agent_key, remote_grace)
     packages, loader = PackageIndex(), LaunchLoader()
     limits = LogLimits.from_environment(os.environ)
     # As ros2 launch: the run folder exists (and `latest` points at it) even when the file is
@@ -240,12 +250,14 @@ def run(
                 f"argument '{name}' is not declared or used by "
                 f"{path.name} (or the files it includes statically)",
             )
-        supervisor = Supervisor(output, network=NodeNetwork(router), hooks=hooks)
+        supervisor = Supervisor(output, network=network, hooks=hooks, remote_factory=remote.factory)
+        remote.bind(supervisor)
         context = _context(supervisor, arguments, packages, loader, run_dir.path)
         return supervisor.run(tree.top, context)
     except LaunchkitError as error:
         output.launch_line("ERROR", "launch", error.format(), screen=False)
         raise
     finally:
+        remote.close()
         output.close()
         run_dir.release()

@@ -71,6 +71,19 @@ def build_parser() -> argparse.ArgumentParser:
         help='show every process\'s output on the screen (output="both")',
     )
     run.add_argument("--router", help="Zenoh router endpoint to host or join (tcp/HOST:PORT)")
+    from launchkit.ros_cli.router_options import add_federation_options
+
+    add_federation_options(run)
+    remote = run.add_argument_group('processes on other hosts (<group machine="NAME">)')
+    remote.add_argument(
+        "--agent-key", metavar="FILE", help="the agents' key (default $LAUNCHKIT_AGENT_KEY)"
+    )
+    remote.add_argument(
+        "--remote-grace",
+        metavar="SECONDS",
+        help="how long agents keep this launch's processes once they lost it "
+        "(default $LAUNCHKIT_REMOTE_GRACE or 10)",
+    )
     run.add_argument(
         "--bridge",
         action="store_true",
@@ -98,6 +111,9 @@ def build_parser() -> argparse.ArgumentParser:
     exec_.add_argument("executable")
     exec_.add_argument("args", nargs=argparse.REMAINDER)
     commands.add_parser("bridge", help="bridge to a ROS 2 DDS graph (see launchkit bridge --help)")
+    commands.add_parser(
+        "agent", help="run this host's share of launches on other hosts (launchkit agent --help)"
+    )
     for name in ROS_COMMANDS:
         commands.add_parser(
             name, help=f"ROS {name} tools (see launchkit {name} --help)", add_help=False
@@ -111,6 +127,10 @@ def main(argv: list[str] | None = None) -> int:
     argv = list(sys.argv[1:] if argv is None else argv)
     if argv and argv[0] in ROS_COMMANDS:
         return _guarded(lambda: _ros_command(argv[0], argv[1:]), debug="--debug" in argv)
+    if argv and argv[0] == "agent":
+        from launchkit.remote.cli import main as agent_main
+
+        return _guarded(lambda: agent_main(argv[1:]), debug="--debug" in argv)
     if argv and argv[0] == "bridge":
         from launchkit.bridge.cli import main as bridge_main
 
@@ -217,8 +237,20 @@ def _launch(args: argparse.Namespace, hooks: SupervisorHooks | None = None) -> i
         raise
     if args.show_all_subprocesses_output:
         os.environ["OVERRIDE_LAUNCH_PROCESS_OUTPUT"] = "both"
+    from launchkit.ros_cli.router_options import federation_asked, federation_options
+
+    options = federation_options(args) if federation_asked(args) else None
     try:
-        return api.run(path, arguments, router=args.router, hooks=hooks, bridge=args.bridge)
+        return api.run(
+            path,
+            arguments,
+            router=args.router,
+            router_options=options,
+            hooks=hooks,
+            bridge=args.bridge,
+            agent_key=args.agent_key,
+            remote_grace=args.remote_grace,
+        )
     except LaunchkitError as error:
         error.exit_status = 2  # raised before anything started: the input is at fault
         raise

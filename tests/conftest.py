@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import os
 import signal
 from collections.abc import Callable, Mapping
 from dataclasses import dataclass, field
@@ -15,6 +16,10 @@ from launchkit.description.process_spec import ProcessSpec
 from launchkit.frontend.launch_loader import LaunchLoader
 from launchkit.packages import PackageIndex
 from launchkit.runtime.recorder import Recorded, Recorder
+
+# No test starts the shared background router unless it means to (tests/ros/test_router_*.py
+# set this back for their commands): a stray one would outlive the test that started it.
+os.environ["LAUNCHKIT_ROUTER_AUTOSTART"] = "0"
 
 
 @dataclass

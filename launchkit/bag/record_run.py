@@ -9,28 +9,27 @@ from launchkit.bag.recorder import Recorder, RecorderOptions
 from launchkit.bag.signals import POLL, stop_on_signals
 from launchkit.bag.storage import BagWriter, WriterOptions
 from launchkit.bag.writer_thread import WriterThread
-from launchkit.envvars import ROUTER as ROUTER_ENV
 from launchkit.errors import RuntimeLaunchError
 from launchkit.ros.context import Context
 from launchkit.ros.executor import Executor
+from launchkit.ros.logging import get_logger
 from launchkit.ros.node import Node
-from launchkit.ros.router import is_listening
 from launchkit.ros.session import router_endpoint
+from launchkit.ros.shared_router import ensure_router
 
 #: Consecutive empty looks at the executor after which the last deliveries count as written.
 _DRAINED_AFTER = 5
 
 
 def open_context(router: str | None) -> Context:
-    """An initialized ROS context on ``router`` (else ``$LAUNCHKIT_ROUTER``); fails if none
-    answers there."""
+    """An initialized ROS context on ``router`` (else ``$LAUNCHKIT_ROUTER``), found as every
+    launchkit command finds its router: the shared background router is started when none
+    answers on loopback, else the command waits for one, saying so once."""
     endpoint = router_endpoint(router)
-    if not is_listening(endpoint, timeout=1.0):
-        raise RuntimeLaunchError(
-            f"no ROS router answers at {endpoint} (start `launchkit run ...` or "
-            f"`launchkit router`, or set {ROUTER_ENV} / --router)"
-        )
-    context = Context(router=endpoint)
+    ensure_router(
+        endpoint, wait=True, say=lambda level, text: getattr(get_logger("bag"), level)(text)
+    )
+    context = Context(router=endpoint, start_router=False)
     context.init([])
     return context
 

@@ -38,6 +38,7 @@ class Scope:
     # (name, value) from <set_parameter>, a file path from <set_parameters_from_file>, in order
     global_params: list[tuple[str, str] | str] = field(default_factory=list)
     remaps: list[tuple[str, str]] = field(default_factory=list)
+    machine: str = ""  # ``<group machine>``: the host its processes run on ("" for this one)
 
     def copy(self) -> Scope:
         """An independent copy (what a timer captures)."""

@@ -30,6 +30,7 @@ class ProcessSpec:
     location: Location | None = None
     env_changes: dict[str, str | None] = field(default_factory=dict)
     files: dict[str, str] = field(default_factory=dict)
+    machine: str = ""  # the agent (host) that runs it; "" for this host
 
     def command_line(self) -> str:
         """The command as a shell would need it typed."""

@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import atexit
+import os
 import signal
 import sys
 import threading
@@ -15,6 +16,7 @@ from launchkit.ros.arguments import RosArguments, parse_ros_args
 from launchkit.ros.keyexpr import domain_id
 from launchkit.ros.logging import get_logger
 from launchkit.ros.session import (
+    SESSION_CONFIG_ENV,
     close_all,
     close_session,
     open_session,
@@ -22,6 +24,7 @@ from launchkit.ros.session import (
     router_endpoint,
     wait_for_router,
 )
+from launchkit.ros.shared_router import ensure_router
 
 ROUTER_WAIT = 2.0  # seconds a new session waits for the router before going on without it
 
@@ -48,8 +51,10 @@ class NotInitializedError(RuntimeError):
 class Context:
     """One ROS context: its arguments, domain, Zenoh session and graph (both opened lazily)."""
 
-    def __init__(self, router: str | None = None) -> None:
+    def __init__(self, router: str | None = None, *, start_router: bool | None = None) -> None:
         self.router = router  # None: $LAUNCHKIT_ROUTER, else the default endpoint
+        # None: $LAUNCHKIT_ROUTER_AUTOSTART decides whether a missing router is started
+        self.start_router = start_router
         self._lock = threading.RLock()
         self._initialized = False
         self._interrupted = False
@@ -100,11 +105,14 @@ class Context:
         with self._lock:
             self.require()
             if self._session is None:
+                endpoint = router_endpoint(self.router)
+                if not os.environ.get(SESSION_CONFIG_ENV):  # else the file names the router
+                    ensure_router(endpoint, autostart=self.start_router, say=_say)
                 self._session = open_session(peer_config(self.router))
                 if not wait_for_router(self._session, ROUTER_WAIT):
                     get_logger("launchkit.ros").warn(
-                        f"no ROS router answers at {router_endpoint(self.router)} yet; "
-                        "this node keeps trying to connect"
+                        f"Unable to connect to a ROS router at {endpoint}: this node keeps "
+                        "trying (start `launchkit router` or a launch there)"
                     )
             return self._session
 
@@ -153,6 +161,10 @@ class Context:
             if self._session is not None:
                 close_session(self._session)
                 self._session = None
+
+
+def _say(level: str, message: str) -> None:
+    getattr(get_logger("launchkit.ros"), level)(message)
 
 
 default_context = Context()

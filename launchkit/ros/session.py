@@ -22,47 +22,25 @@ from typing import Any, cast
 
 import zenoh
 
-from launchkit.envvars import ROUTER
 from launchkit.errors import UserError
+from launchkit.ros.endpoints import (
+    DEFAULT_ROUTER,
+    EndpointError,
+    host_port,
+    router_endpoint,
+    validate_endpoint,
+)
+from launchkit.ros.federation import RouterOptions, RouterOptionsError
 from launchkit.ros.logging import get_logger
 
 SESSION_CONFIG_ENV = "ZENOH_SESSION_CONFIG_URI"
 ROUTER_CONFIG_ENV = "ZENOH_ROUTER_CONFIG_URI"
 CONFIG_OVERRIDE_ENV = "ZENOH_CONFIG_OVERRIDE"
-DEFAULT_ROUTER = "tcp/127.0.0.1:7447"
 LOOPBACK_LISTEN = "tcp/127.0.0.1:0"
-
-
-class EndpointError(UserError):
-    """A malformed router endpoint."""
 
 
 class ZenohConfigError(UserError):
     """A Zenoh configuration file named by ``ZENOH_*_CONFIG_URI`` that cannot be used."""
-
-
-def router_endpoint(endpoint: str | None = None) -> str:
-    """The router endpoint: ``endpoint``, else ``$LAUNCHKIT_ROUTER``, else the default."""
-    value = endpoint or os.environ.get(ROUTER) or DEFAULT_ROUTER
-    return validate_endpoint(value)
-
-
-def validate_endpoint(endpoint: str) -> str:
-    """``endpoint`` if it looks like ``tcp/HOST:PORT`` (or udp/quic/tls), else an error."""
-    proto, sep, address = endpoint.partition("/")
-    host, colon, port = address.rpartition(":")
-    if not sep or proto not in ("tcp", "udp", "tls", "quic") or not colon or not host:
-        raise EndpointError(f"invalid router endpoint {endpoint!r}", expected="tcp/HOST:PORT")
-    if not port.isdigit() or not 0 < int(port) < 65536:
-        raise EndpointError(f"invalid port in router endpoint {endpoint!r}", expected="1..65535")
-    return endpoint
-
-
-def host_port(endpoint: str) -> tuple[str, int]:
-    """(host, port) of ``proto/HOST:PORT`` (IPv6 brackets removed)."""
-    address = endpoint.partition("/")[2]
-    host, _, port = address.rpartition(":")
-    return host.strip("[]"), int(port)
 
 
 def _base_config(mode: str) -> zenoh.Config:
@@ -100,18 +78,53 @@ def peer_config(endpoint: str | None = None) -> zenoh.Config:
     return apply_overrides(config)
 
 
-def router_config(endpoint: str) -> zenoh.Config:
-    """The router's configuration: listen on ``endpoint`` only, no multicast scouting.
+def router_config(endpoint: str, options: RouterOptions | None = None) -> zenoh.Config:
+    """The router's configuration: listen on ``endpoint`` only, no multicast scouting; with
+    ``options``, also the endpoints, TLS and access control that reach other hosts.
 
-    ``$ZENOH_ROUTER_CONFIG_URI`` replaces it with a file, and ``$ZENOH_CONFIG_OVERRIDE``
+    ``$ZENOH_ROUTER_CONFIG_URI`` replaces it with a file (used as is: ``options`` add their
+    endpoints to the file's and set only the keys they name), and ``$ZENOH_CONFIG_OVERRIDE``
     changes keys of either, as rmw_zenoh's router does.
     """
     config = _config_file(ROUTER_CONFIG_ENV)
+    from_file = config is not None
     if config is None:
         config = _base_config("router")
         config.insert_json5("listen/endpoints", json.dumps([endpoint]))
         config.insert_json5("connect/endpoints", "[]")
+    if options is not None and not options.empty:
+        _apply_options(config, endpoint, options, from_file)
     return apply_overrides(config)
+
+
+def _apply_options(
+    config: zenoh.Config, endpoint: str, options: RouterOptions, from_file: bool
+) -> None:
+    settings = options.settings(endpoint)
+    if from_file:  # the file says where the router listens; the options add to its lists
+        settings["listen/endpoints"] = list(options.listen)
+        for key in ("listen/endpoints", "connect/endpoints"):
+            settings[key] = list(dict.fromkeys([*_router_endpoints(config, key), *settings[key]]))
+    for key, value in settings.items():
+        _insert(config, key, json.dumps(value), "a valid Zenoh setting")
+    access = options.access_control()
+    if access is not None:
+        expected = f"Zenoh's access_control section in {options.access}"
+        _insert(config, "access_control", access, expected)
+
+
+def _router_endpoints(config: zenoh.Config, key: str) -> list[str]:
+    """A router's ``listen``/``connect`` endpoints (Zenoh also allows one list per mode)."""
+    value = json.loads(config.get_json(key))
+    return list(value.get("router", []) if isinstance(value, dict) else value)
+
+
+def _insert(config: zenoh.Config, key: str, json5: str, expected: str) -> None:
+    try:
+        config.insert_json5(key, json5)
+    except Exception as exc:  # zenoh raises a bare ZError
+        message = f"cannot set the router's {key}: {exc}"
+        raise RouterOptionsError(message, expected=expected) from None
 
 
 def _config_file(variable: str) -> zenoh.Config | None:
@@ -195,6 +208,24 @@ def close_all() -> None:
         if not session.is_closed():
             session.close()  # type: ignore[no-untyped-call]
 
+
+# re-exported: the endpoint helpers lived here first
+__all__ = [
+    "DEFAULT_ROUTER",
+    "EndpointError",
+    "ZenohConfigError",
+    "apply_overrides",
+    "close_all",
+    "close_session",
+    "host_port",
+    "open_session",
+    "parse_overrides",
+    "peer_config",
+    "router_config",
+    "router_endpoint",
+    "validate_endpoint",
+    "wait_for_router",
+]
 
 # zenoh logs transient connection races (two peers dialing each other) at ERROR level; they
 # are harmless, so stay quiet unless the user asks with RUST_LOG

@@ -9,13 +9,14 @@ from collections.abc import Iterator
 from contextlib import contextmanager
 
 from launchkit.envvars import ROUTER
-from launchkit.errors import RuntimeLaunchError, UserError
+from launchkit.errors import UserError
 from launchkit.ros.context import Context
+from launchkit.ros.endpoints import router_endpoint
 from launchkit.ros.graph import snapshot
 from launchkit.ros.keyexpr import Token
+from launchkit.ros.logging import get_logger
 from launchkit.ros.node import Node
-from launchkit.ros.router import is_listening
-from launchkit.ros.session import router_endpoint
+from launchkit.ros.shared_router import ensure_router
 
 
 class CliUsageError(UserError):
@@ -33,22 +34,24 @@ def add_router_option(parser: argparse.ArgumentParser) -> None:
 
 
 def use_router(args: argparse.Namespace) -> str:
-    """Point this process at the router the user chose; fail clearly if none answers."""
+    """Point this process at the router the user chose, once one answers there: the shared
+    background router is started when none does on loopback, else the command waits for one,
+    saying so once (as rmw_zenoh's nodes do); another user's router is refused."""
     endpoint = router_endpoint(getattr(args, "router", None))
     os.environ[ROUTER] = endpoint
-    if not is_listening(endpoint, timeout=1.0):
-        raise RuntimeLaunchError(
-            f"no ROS router answers at {endpoint} (start `launchkit run ...` or "
-            f"`launchkit router`, or set {ROUTER} / --router)"
-        )
+    ensure_router(endpoint, wait=True, say=_say)
     return endpoint
+
+
+def _say(level: str, message: str) -> None:
+    getattr(get_logger("launchkit"), level)(message)
 
 
 @contextmanager
 def cli_node(args: argparse.Namespace) -> Iterator[Node]:
     """A hidden node for one command, its context shut down afterwards."""
     use_router(args)
-    context = Context()
+    context = Context(start_router=False)  # use_router decided already
     context.init([])
     try:
         yield Node(f"_launchkit_cli_{os.getpid()}", context=context, start_parameter_services=False)

@@ -42,7 +42,11 @@ def add_parser(commands: Any) -> None:
     p.add_argument("message_type", nargs="?", help="e.g. std_msgs/msg/String (default: discovered)")
     p.add_argument("--once", action="store_true", help="print one message and exit")
     p.add_argument("--full-length", "-f", action="store_true", help="do not cut long arrays")
-    p.add_argument("--timeout", type=float, default=5.0, help="seconds to wait for the type")
+    p.add_argument(
+        "--timeout",
+        type=float,
+        help="seconds to wait for the topic to appear (default: as long as it takes)",
+    )
     add_router_option(p)
     p.set_defaults(run=_echo)
 
@@ -93,8 +97,11 @@ def _list(args: argparse.Namespace) -> int:
     return 0
 
 
-def _discover_type(node: Any, topic: str, timeout: float) -> str:
-    deadline = time.monotonic() + timeout
+def _discover_type(node: Any, topic: str, timeout: float | None) -> str:
+    """The type of ``topic`` from the graph; like ros2, wait until something publishes or
+    subscribes to it, saying so once (``timeout`` seconds at most; None: as long as it takes)."""
+    deadline = None if timeout is None else time.monotonic() + timeout
+    warned = False
     while True:
         types = _topics(graph_tokens(node), True).get(topic, set())
         if len(types) == 1:
@@ -104,11 +111,16 @@ def _discover_type(node: Any, topic: str, timeout: float) -> str:
                 f"topic {topic} has several types: {', '.join(sorted(types))}",
                 expected="the message type as the second argument",
             )
-        if time.monotonic() > deadline:
+        if deadline is not None and time.monotonic() > deadline:
             raise CliUsageError(
                 f"could not determine the type of {topic}: nothing publishes or subscribes to it",
                 expected="a topic from `launchkit topic list`, or the message type as argument",
             )
+        if not warned:
+            print(f"WARNING: topic [{topic}] does not appear to be published yet", flush=True)
+            warned = True
+        if not node.context.ok():
+            raise KeyboardInterrupt
         time.sleep(0.1)
 
 
@@ -202,7 +214,7 @@ def _one_line(msg: Any) -> str:
 def _hz(args: argparse.Namespace) -> int:
     topic = normalize_topic(args.topic_name)
     with cli_node(args) as node:
-        type_name = _discover_type(node, topic, 5.0)
+        type_name = _discover_type(node, topic, None)
         stamps: list[float] = []
         lock = threading.Lock()
 

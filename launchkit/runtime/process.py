@@ -23,7 +23,7 @@ from dataclasses import dataclass, field
 from typing import Protocol
 
 from launchkit.description.process_spec import ProcessSpec
-from launchkit.errors import LaunchFileError
+from launchkit.errors import LaunchFileError, LaunchkitError
 from launchkit.runtime.lifecycle import Escalation, Lifecycle, RespawnPolicy, State
 from launchkit.runtime.lines import LineBuffer
 
@@ -103,6 +103,20 @@ class SupervisedProcess(Protocol):
 
 #: Makes a process to supervise from its spec, its label (``name-N``) and its index N.
 ProcessFactory = Callable[[ProcessSpec, str, int], SupervisedProcess]
+
+
+def by_machine(local: ProcessFactory, remote: ProcessFactory | None) -> ProcessFactory:
+    """A factory that makes a spec for another host (``spec.machine``, ``<group machine>``)
+    with ``remote`` (its agent runs it) and every other spec with ``local``."""
+
+    def make(spec: ProcessSpec, label: str, index: int) -> SupervisedProcess:
+        if not spec.machine:
+            return local(spec, label, index)
+        if remote is None:
+            raise LaunchkitError(f"'{spec.name}' is for machine {spec.machine!r}: no agents here")
+        return remote(spec, label, index)
+
+    return make
 
 
 @dataclass
@@ -186,27 +200,7 @@ class ManagedProcess:
     def read(self, fd: int, limit: int = READ_CHUNK) -> tuple[list[str], bool]:
         """Read what is available on ``fd``, at most ``limit`` bytes (so that a flood cannot
         hold the loop): the lines it completes, and whether the stream ended."""
-        stream = self.streams[fd]
-        lines: list[str] = []
-        eof = False
-        taken = 0
-        while taken < limit:
-            try:
-                chunk = os.read(fd, min(READ_CHUNK, limit - taken))
-            except BlockingIOError:
-                break
-            except OSError as error:
-                if error.errno != errno.EIO:  # EIO: the pty's other side closed
-                    raise
-                chunk = b""
-            if not chunk:
-                eof = True
-                break
-            taken += len(chunk)
-            lines.extend(stream.lines.feed(chunk))
-        if eof:
-            lines.extend(stream.lines.finish())
-        return lines, eof
+        return read_stream(self.streams[fd], limit)
 
     def close_stream(self, fd: int) -> None:
         """Forget and close one stream."""
@@ -311,3 +305,25 @@ def describe_exit(code: int) -> str:
         except ValueError:
             return f"signal {-code}"
     return f"exit code {code}"
+
+
+def read_stream(stream: Stream, limit: int = READ_CHUNK) -> tuple[list[str], bool]:
+    """Read what is available on ``stream``'s non-blocking fd, at most ``limit`` bytes: the
+    lines it completes (bounded and split by its :class:`LineBuffer`), and whether it ended."""
+    lines: list[str] = []
+    taken = 0
+    while taken < limit:
+        try:
+            chunk = os.read(stream.fd, min(READ_CHUNK, limit - taken))
+        except BlockingIOError:
+            return lines, False
+        except OSError as error:
+            if error.errno != errno.EIO:  # EIO: the pty's other side closed
+                raise
+            chunk = b""
+        if not chunk:
+            lines.extend(stream.lines.finish())
+            return lines, True
+        taken += len(chunk)
+        lines.extend(stream.lines.feed(chunk))
+    return lines, False

@@ -80,6 +80,8 @@ def render(items: list[Recorded], indent: str = "") -> str:
             lines.append(
                 f"{indent}{kind} {spec.name}" + (f"  ({spec.location})" if spec.location else "")
             )
+            if spec.machine:
+                lines.append(f"{indent}  machine: {spec.machine} (run by its launchkit agent)")
             lines.append(f"{indent}  cmd: {shlex.join(spec.cmd)}")
             lines.append(f"{indent}  cwd: {spec.cwd or '(launch directory)'}")
             lines.append(f"{indent}  output: {spec.output}")

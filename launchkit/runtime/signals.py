@@ -131,3 +131,10 @@ class SignalPipe:
             return
         self._raising = False
         raise Interrupted(signum)
+
+
+def first_signal_message(signum: int) -> str:
+    """What the launcher says when a signal first asks it to stop (ROS's words for Ctrl-C)."""
+    if signum == signal.SIGINT:
+        return "user interrupted with ctrl-c (SIGINT)"
+    return f"received {signal.Signals(signum).name}"

@@ -39,11 +39,17 @@ from launchkit.runtime.process import (
     ManagedProcess,
     ProcessFactory,
     SupervisedProcess,
+    by_machine,
     check_program,
 )
 from launchkit.runtime.process_io import POLL_INTERVAL, ProcessIO
 from launchkit.runtime.process_report import ProcessReport
-from launchkit.runtime.signals import Interrupted, SignalPipe, exit_status
+from launchkit.runtime.signals import (
+    Interrupted,
+    SignalPipe,
+    exit_status,
+    first_signal_message,
+)
 from launchkit.runtime.timers import TimerQueue
 
 if TYPE_CHECKING:
@@ -63,6 +69,7 @@ class Supervisor:
         clock: Callable[[], float] = time.monotonic,
         hooks: SupervisorHooks | None = None,
         process_factory: ProcessFactory | None = None,
+        remote_factory: ProcessFactory | None = None,
     ) -> None:
         self.output = output
         self.hooks = hooks or SupervisorHooks()
@@ -81,9 +88,11 @@ class Supervisor:
         self._io = ProcessIO(self._selector, output, self.hooks, self._on_exit)
         self._report = ProcessReport(output, self.hooks)
         self._requests: ChildRequests | None = None
-        self._new_process = process_factory or (
+        local = process_factory or (
             lambda spec, label, index: ManagedProcess(spec, label, index, self._cleanup.watch)
         )
+        # processes for another host (spec.machine) are run by its agent (launchkit.remote)
+        self._new_process = by_machine(local, remote_factory)
 
     # -- the Runner protocol (what actions call) ----------------------------------------------
 
@@ -167,7 +176,8 @@ class Supervisor:
         if self.shutting_down:
             return
         for spec in pending:
-            check_program(spec)
+            if not spec.machine:  # another host's programs are its agent's to find
+                check_program(spec)
         for spec in pending:
             if self.shutting_down:
                 break
@@ -355,12 +365,7 @@ class Supervisor:
         self._interrupts += 1
         name = signal.Signals(signum).name
         if self._interrupts == 1:
-            what = (
-                "user interrupted with ctrl-c (SIGINT)"
-                if signum == signal.SIGINT
-                else f"received {name}"
-            )
-            self.log("WARNING", "launch", what)
+            self.log("WARNING", "launch", first_signal_message(signum))
             self.exit_code = self.exit_code or exit_status(signum)
             self.begin_shutdown("shutting down")
             return

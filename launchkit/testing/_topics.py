@@ -22,7 +22,7 @@ class TopicProbe:
         import launchkit.ros as ros  # only tests that look at topics pay for the ROS layer
 
         self._ros = ros
-        self.context = ros.Context(router=router)
+        self.context = ros.Context(router=router, start_router=False)  # the launch hosts it
         self.context.init([], domain_id)
         self.node = ros.Node("launchkit_test_probe", context=self.context, enable_rosout=False)
 

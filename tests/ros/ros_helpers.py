@@ -99,3 +99,36 @@ def spin_until(node: Node, predicate: Callable[[], bool], timeout: float, what: 
         if time.monotonic() > deadline:
             raise AssertionError(f"timed out after {timeout} s waiting for {what}")
         spin_once(node, timeout_sec=0.05)
+
+
+def demo_package(prefix: Path) -> None:
+    """An AMENT_PREFIX_PATH package ``demo`` whose executables run the test nodes (``talker``,
+    ``listener``): what ``launchkit exec demo talker`` and a launch's ``<node>`` start."""
+    marker = prefix / "share" / "ament_index" / "resource_index" / "packages" / "demo"
+    marker.parent.mkdir(parents=True)
+    marker.write_text("")
+    (prefix / "share" / "demo").mkdir(parents=True)
+    lib = prefix / "lib" / "demo"
+    lib.mkdir(parents=True)
+    for name in ("talker", "listener"):
+        exe = lib / name
+        script = str(NODES_DIR / f"{name}.py")
+        exe.write_text(
+            f"#!{sys.executable}\nimport runpy\nrunpy.run_path({script!r}, run_name='__main__')\n"
+        )
+        exe.chmod(0o755)
+
+
+def stderr_line(child: Child, text: str, timeout: float) -> str:
+    """The first stderr line of ``child`` containing ``text``; fails after ``timeout`` s."""
+    deadline = time.monotonic() + timeout
+    while True:
+        found = [line for line in list(child.stderr) if text in line]
+        if found:
+            return found[0]
+        if time.monotonic() > deadline or child.proc.poll() is not None:
+            raise AssertionError(
+                f"no stderr line containing {text!r} within {timeout} s; "
+                f"exit={child.proc.poll()} stderr={''.join(child.stderr)[-2000:]}"
+            )
+        time.sleep(0.02)

@@ -114,14 +114,6 @@ def test_interface_show() -> None:
     assert bad.returncode == 2 and "unknown message type" in bad.stderr
 
 
-def test_without_a_router_the_command_says_so(monkeypatch: pytest.MonkeyPatch) -> None:
-    from ros_helpers import free_port
-
-    monkeypatch.setenv("LAUNCHKIT_ROUTER", f"tcp/127.0.0.1:{free_port()}")
-    result = launchkit("topic", "list")
-    assert result.returncode == 1 and "no ROS router answers" in result.stderr
-
-
 def test_echo_latched_topic_hz_and_lists(talker: Child, children: list[Child]) -> None:
     latched = Child([str(NODES_DIR / "latched_listener.py")])
     children.append(latched)

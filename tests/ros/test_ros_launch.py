@@ -3,34 +3,16 @@
 from __future__ import annotations
 
 import os
-import sys
 from pathlib import Path
 
 import pytest
-from ros_helpers import NODES_DIR, Child, free_port
-
-
-def _package(prefix: Path) -> None:
-    """An AMENT_PREFIX_PATH package ``demo`` whose executables run the test nodes."""
-    marker = prefix / "share" / "ament_index" / "resource_index" / "packages" / "demo"
-    marker.parent.mkdir(parents=True)
-    marker.write_text("")
-    (prefix / "share" / "demo").mkdir(parents=True)
-    lib = prefix / "lib" / "demo"
-    lib.mkdir(parents=True)
-    for name in ("talker", "listener"):
-        exe = lib / name
-        script = str(NODES_DIR / f"{name}.py")
-        exe.write_text(
-            f"#!{sys.executable}\nimport runpy\nrunpy.run_path({script!r}, run_name='__main__')\n"
-        )
-        exe.chmod(0o755)
+from ros_helpers import Child, demo_package, free_port
 
 
 def test_launch_file_nodes_talk_through_the_hosted_router(
     tmp_path: Path, children: list[Child], monkeypatch: pytest.MonkeyPatch
 ) -> None:
-    _package(tmp_path / "prefix")
+    demo_package(tmp_path / "prefix")
     launch = tmp_path / "demo.launch.xml"
     launch.write_text(
         """<launch>

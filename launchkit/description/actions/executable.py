@@ -128,6 +128,7 @@ class ProcessBuilder:
             location=self.location,
         )
         spec.env_changes = _changes(ctx.initial_environment, env)
+        spec.machine = ctx.scope.machine
         return spec
 
     def _output(self) -> str:

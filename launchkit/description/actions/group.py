@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import re
 from collections.abc import Sequence
 from dataclasses import dataclass
 from typing import TYPE_CHECKING
@@ -9,7 +10,10 @@ from typing import TYPE_CHECKING
 from launchkit.description.actions.base import Action
 from launchkit.description.launch_context import Scope
 from launchkit.description.substitutions.base import Value, perform
-from launchkit.errors import Location
+from launchkit.errors import Location, RuntimeLaunchError
+
+#: what ``launchkit agent --name`` accepts (launchkit.remote.protocol checks the same)
+MACHINE_NAME = re.compile(r"^[A-Za-z0-9_.-]{1,64}$")
 
 if TYPE_CHECKING:
     from launchkit.description.conditions import Condition
@@ -35,7 +39,9 @@ class Group(Action):
     A scoped group that forwards sets its ``<keep>``s as configurations inside the scope; one
     that does not forward starts from the environment the launch began with and from nothing
     but its ``<keep>``s (evaluated after that environment reset). An unscoped group ignores
-    ``forwarding``: its ``<keep>``s are plain ``<let>``s and everything leaks.
+    ``forwarding``: its ``<keep>``s are plain ``<let>``s and everything leaks. ``machine`` names
+    the host (agent) that runs the processes inside (launchkit's extension:
+    ``docs/multi-host.md``; empty: this host).
     """
 
     TAG = "group"
@@ -48,12 +54,14 @@ class Group(Action):
         keeps: Sequence[Keep] = (),
         location: Location | None = None,
         condition: Condition | None = None,
+        machine: Value | None = None,
     ) -> None:
         super().__init__(location, condition)
         self.actions = list(actions)
         self.scoped = scoped
         self.forwarding = forwarding
         self.keeps = list(keeps)
+        self.machine = machine
 
     def children(self) -> Sequence[Action]:
         """The grouped actions."""
@@ -79,6 +87,15 @@ class Group(Action):
             context.configurations[perform(keep.name, context)] = perform(keep.value, context)
 
     def _run(self, context: LaunchContext) -> None:
+        if self.machine is not None:
+            machine = perform(self.machine, context).strip()
+            if machine and not MACHINE_NAME.match(machine):
+                raise RuntimeLaunchError(
+                    f"machine {machine!r} is not a valid agent name",
+                    self.location,
+                    expected="1-64 letters, digits, '_', '.' or '-' (or empty: this host)",
+                )
+            context.scope.machine = machine
         for action in self.actions:
             action.visit(context)
 
@@ -86,7 +103,11 @@ class Group(Action):
 def reset(context: LaunchContext, keeps: Sequence[Keep]) -> None:
     """Clear configurations (and ROS globals) except the kept ones, evaluated first."""
     kept = _kept(keeps, context)
-    context.scope = Scope(configurations=kept, environment=context.scope.environment)
+    context.scope = Scope(
+        configurations=kept,
+        environment=context.scope.environment,
+        machine=context.scope.machine,
+    )
 
 
 class Reset(Action):

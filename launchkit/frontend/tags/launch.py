@@ -93,7 +93,9 @@ def parse_group(entity: Entity, parser: ActionParser) -> Action:
     scoped = entity.static_bool("scoped", True)
     forwarding = entity.static_bool("forwarding", True)
     keeps = parse_keeps(entity, entity.children())
-    return Group(parser.parse_actions(entity, skip=("keep",)), scoped, forwarding, keeps)
+    machine = entity.value("machine")  # launchkit's extension: the host that runs it
+    actions = parser.parse_actions(entity, skip=("keep",))
+    return Group(actions, scoped, forwarding, keeps, machine=machine)
 
 
 def parse_reset(entity: Entity, parser: ActionParser) -> Action:

@@ -1,0 +1,121 @@
+"""A router port held by another local user is refused, not silently joined (issue #17).
+
+The other user is ``nobody``: a child process drops to its uid before it listens (the tests
+run as root; elsewhere they are skipped, saying why).
+"""
+
+from __future__ import annotations
+
+import ipaddress
+import os
+import subprocess
+import sys
+from collections.abc import Iterator
+from pathlib import Path
+
+import pytest
+from ros_helpers import demo_package, free_port
+
+from launchkit.ros.context import Context
+from launchkit.ros.port_owner import _decode_address, find_listener
+from launchkit.ros.router import start_router
+from launchkit.ros.router_access import ForeignRouterError
+
+NOBODY = 65534
+
+_LISTEN_AS_NOBODY = """
+import os, socket, sys, time
+os.setgroups([]); os.setgid({uid}); os.setuid({uid})
+s = socket.socket(); s.bind(("127.0.0.1", {port})); s.listen()
+print("listening", flush=True)
+sys.stdin.read()
+"""
+
+
+@pytest.fixture
+def foreign_endpoint() -> Iterator[str]:
+    """An endpoint on loopback where a process of user ``nobody`` listens."""
+    if os.geteuid() != 0:
+        pytest.skip("needs root, to start a listener as another user")
+    port = free_port()
+    owner = subprocess.Popen(
+        [sys.executable, "-c", _LISTEN_AS_NOBODY.format(uid=NOBODY, port=port)],
+        stdin=subprocess.PIPE,
+        stdout=subprocess.PIPE,
+        text=True,
+    )
+    try:
+        assert owner.stdout is not None and owner.stdout.readline() == "listening\n"
+        yield f"tcp/127.0.0.1:{port}"
+    finally:
+        owner.kill()
+        owner.communicate()  # reaps it and closes its pipes
+
+
+def test_the_owner_of_a_listening_port_is_found(foreign_endpoint: str) -> None:
+    port = int(foreign_endpoint.rpartition(":")[2])
+    listener = find_listener("127.0.0.1", port)
+    assert listener is not None and listener.uid == NOBODY and listener.user == "nobody"
+    assert find_listener("localhost", port) == listener
+    assert find_listener("127.0.0.1", free_port()) is None
+
+
+def test_kernel_addresses_are_decoded() -> None:
+    assert _decode_address("0100007F:1D17") == (ipaddress.ip_address("127.0.0.1"), 7447)
+    v6_loopback = "00000000000000000000000001000000:0050"
+    assert _decode_address(v6_loopback) == (ipaddress.ip_address("::1"), 80)
+    mapped = "0000000000000000FFFF00000100007F:1D17"
+    assert _decode_address(mapped)[0] == ipaddress.ip_address("::ffff:127.0.0.1")
+
+
+def test_a_launch_refuses_another_users_router(foreign_endpoint: str, tmp_path: Path) -> None:
+    demo_package(tmp_path / "prefix")
+    launch = tmp_path / "talk.launch.xml"
+    launch.write_text('<launch><node pkg="demo" exec="talker"/></launch>\n')
+    result = subprocess.run(
+        [sys.executable, "-m", "launchkit", "run", str(launch), "--router", foreign_endpoint],
+        capture_output=True,
+        text=True,
+        timeout=60,
+        env={**os.environ, "AMENT_PREFIX_PATH": str(tmp_path / "prefix")},
+    )
+    output = result.stdout + result.stderr
+    assert result.returncode == 1, output
+    assert (
+        f"error: the ROS router port {foreign_endpoint} is held by another user "
+        f"(nobody, uid {NOBODY}): refusing to join it" in output
+    )
+    assert "LAUNCHKIT_ROUTER_TRUSTED_USERS=nobody" in output
+    assert "talker-1" not in output  # nothing was started
+
+
+def test_a_command_refuses_another_users_router(foreign_endpoint: str) -> None:
+    result = subprocess.run(
+        [sys.executable, "-m", "launchkit", "topic", "list", "--router", foreign_endpoint],
+        capture_output=True,
+        text=True,
+        timeout=60,
+    )
+    assert result.returncode == 1
+    assert result.stderr.startswith(f"error: the ROS router port {foreign_endpoint} is held by")
+    assert "Traceback" not in result.stderr
+
+
+def test_a_node_refuses_another_users_router(foreign_endpoint: str) -> None:
+    context = Context(router=foreign_endpoint)
+    context.init([])
+    try:
+        with pytest.raises(ForeignRouterError, match="held by another user"):
+            _ = context.session
+    finally:
+        context.shutdown()
+
+
+def test_a_trusted_users_router_is_joined(
+    foreign_endpoint: str, monkeypatch: pytest.MonkeyPatch
+) -> None:
+    with pytest.raises(ForeignRouterError):
+        start_router(foreign_endpoint)
+    monkeypatch.setenv("LAUNCHKIT_ROUTER_TRUSTED_USERS", "someone-unknown, nobody")
+    handle = start_router(foreign_endpoint)
+    assert not handle.hosted
