@@ -16,11 +16,12 @@ import copy
 import os
 import shutil
 import tempfile
+from collections import deque
 from collections.abc import Callable, Iterator, Sequence
 from contextlib import contextmanager
 from dataclasses import dataclass, field
 from pathlib import Path
-from typing import TYPE_CHECKING, Protocol
+from typing import TYPE_CHECKING, Any, Protocol
 
 from launchkit.packages import PackageIndex
 
@@ -63,6 +64,23 @@ class DelayedActions(Protocol):
         """Whether a shutdown drops them before they run."""
 
 
+class Handler(Protocol):
+    """An event handler as the context keeps it
+    (:class:`launchkit.description.events.EventHandler`)."""
+
+    snapshot: Snapshot | None
+
+    def matches(self, event: object) -> bool:
+        """Whether it reacts to ``event``."""
+
+    def handle(self, event: object, context: LaunchContext) -> Sequence[Visitable]:
+        """The actions to run for ``event``."""
+
+    @property
+    def handle_once(self) -> bool:
+        """Whether it is unregistered after its first event."""
+
+
 class RequiredArgument(Protocol):
     """An ``<arg>`` without a default, as an include checks it."""
 
@@ -102,6 +120,10 @@ class Runner(Protocol):
     def log(self, level: str, logger: str, message: str) -> None:
         """Print a launch line ``[LEVEL] [logger]: message``."""
 
+    def stop_processes(self, matcher: Callable[[object], bool], signum: int | None) -> None:
+        """Stop (``signum`` None: as a shutdown would, never respawning) or signal the running
+        processes whose action ``matcher`` accepts."""
+
 
 @dataclass(frozen=True)
 class Snapshot:
@@ -138,6 +160,17 @@ class LaunchContext:
         self._log_dir = log_dir
         self._stack: list[Scope] = []
         self._scratch: Path | None = None
+        #: Registered event handlers, newest first (as ROS keeps them).
+        self.handlers: deque[Handler] = deque()
+        self.event_queue: deque[object] = deque()
+        self.draining = False
+        self.is_shutdown = False
+        self.locals: dict[str, Any] = {}
+        #: What Push/PopLaunchConfigurations and Push/PopEnvironment (Python API) keep.
+        self.saved_scopes: list[Scope] = []
+        self.saved_environments: list[dict[str, str]] = []
+        #: Told of every handler registered (the ``--print`` recorder shows their actions).
+        self.on_register: Callable[[Handler], None] | None = None
 
     @property
     def configurations(self) -> dict[str, str]:
@@ -172,6 +205,32 @@ class LaunchContext:
     def log(self, level: str, message: str, logger: str = "launch") -> None:
         """Print a launch line through the runner."""
         self.runner.log(level, logger, message)
+
+    def emit(self, event: object) -> None:
+        """Queue ``event`` for the handlers (the runner drains the queue)."""
+        self.event_queue.append(event)
+
+    def register_handler(self, handler: Handler) -> None:
+        """Add an event handler, ahead of the ones registered before it; it will run its
+        actions in the current scope."""
+        handler.snapshot = self.snapshot()
+        self.handlers.appendleft(handler)
+        if self.on_register is not None:
+            self.on_register(handler)
+
+    @contextmanager
+    def local(self, name: str, value: Any) -> Iterator[None]:
+        """Make ``value`` the local ``name`` (``LocalSubstitution``) while the body runs."""
+        missing = object()
+        previous = self.locals.get(name, missing)
+        self.locals[name] = value
+        try:
+            yield
+        finally:
+            if previous is missing:
+                self.locals.pop(name, None)
+            else:
+                self.locals[name] = previous
 
     @contextmanager
     def scoped(self, scope: Scope | None = None) -> Iterator[None]:

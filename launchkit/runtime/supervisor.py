@@ -23,10 +23,12 @@ import time
 from collections.abc import Callable
 from typing import TYPE_CHECKING
 
+from launchkit.description.events import ExecutionComplete
 from launchkit.description.process_spec import ProcessSpec
 from launchkit.errors import LaunchkitError
 from launchkit.runtime.child_requests import ChildRequests, RequestError
 from launchkit.runtime.hooks import SupervisorHooks
+from launchkit.runtime.launch_events import EventRelay
 from launchkit.runtime.lifecycle import Respawn, SendSignal, State
 from launchkit.runtime.orphan_guard import OrphanGuard
 from launchkit.runtime.output import Output
@@ -61,7 +63,7 @@ class Supervisor:
         process_factory: ProcessFactory | None = None,
     ) -> None:
         self.output = output
-        self.hooks = hooks or SupervisorHooks()
+        self.hooks = self._relay = EventRelay(hooks or SupervisorHooks())
         self.network = network
         self.clock = clock
         self.processes: list[SupervisedProcess] = []
@@ -99,11 +101,19 @@ class Supervisor:
 
     def request_shutdown(self, reason: str) -> None:
         """``<shutdown>``: stop everything."""
-        self.begin_shutdown(f"shutdown requested: {reason}")
+        self.begin_shutdown(f"shutdown requested: {reason}", cause=reason)
 
     def log(self, level: str, logger: str, message: str) -> None:
         """A launch line."""
         self.output.launch_line(level, logger, message)
+
+    def stop_processes(self, matcher: Callable[[object], bool], signum: int | None) -> None:
+        """ShutdownProcess (``signum`` None) / SignalProcess for the matching processes."""
+        for process in [p for p in self.processes if p.alive and matcher(p.spec.origin)]:
+            if signum is None:
+                self.stop_child(process)
+            else:
+                self._send(process, SendSignal(signal.Signals(signum)))
 
     # -- running -----------------------------------------------------------------------------
 
@@ -112,13 +122,14 @@ class Supervisor:
 
         Errors in the first pass (before anything started) propagate as exceptions.
         """
-        self._context = context
+        self._context = self._relay.context = context
         self._signals.install()
         self._selector.register(self._signals.fd, selectors.EVENT_READ, self._read_signals)
         try:
             self._open_requests()
             self._first_pass(description, context)
             self.hooks.launch_ready()
+            self._drain()
             while not self._done():
                 self.step(self._timeout())
         finally:
@@ -169,6 +180,12 @@ class Supervisor:
             key.data()
         self._io.poll(self.processes)
         self._run_due()
+        self._drain()
+
+    def _drain(self) -> None:  # the handlers of what happened; an error in them shuts down
+        error = self._relay.drain()
+        if error is not None:
+            self.fail(error)
 
     def _done(self) -> bool:
         if any(p.alive for p in self.processes):
@@ -203,6 +220,7 @@ class Supervisor:
             with context.restored(snapshot):
                 for action in timer.actions:
                     action.visit(context)
+            context.emit(ExecutionComplete(action=timer))
         except LaunchkitError as error:
             self.fail(error)
 
@@ -311,14 +329,16 @@ class Supervisor:
 
     # -- shutdown ----------------------------------------------------------------------------
 
-    def begin_shutdown(self, reason: str, level: str = "INFO") -> None:
-        """Cancel timers and respawns and send SIGINT to every running process group."""
+    def begin_shutdown(self, reason: str, level: str = "INFO", cause: str | None = None) -> None:
+        """Cancel timers and respawns, run OnShutdown handlers, SIGINT every process group."""
         if self.shutting_down:
             return
         self.shutting_down = True
         self.log(level, "launch", reason)
         self.hooks.shutdown(reason)
         self._timers.cancel_on_shutdown()
+        if (error := self._relay.shutting_down(cause or reason, self._interrupts > 0)) is not None:
+            self.fail(error)  # reported; the shutdown goes on
         now = self.clock()
         for process in self.processes:
             effect = process.lifecycle.stop(now)

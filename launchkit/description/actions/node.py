@@ -8,11 +8,12 @@ The command is ``EXECUTABLE [args] --ros-args [ros_args] -r __node:=NAME -r __ns
 from __future__ import annotations
 
 import os
+from collections.abc import Sequence
 from dataclasses import dataclass
 from typing import TYPE_CHECKING, Any
 
 from launchkit.description.actions.base import Action
-from launchkit.description.actions.executable import ProcessBuilder, ProcessOptions
+from launchkit.description.actions.executable import ProcessBuilder, ProcessOptions, start
 from launchkit.description.actions.parameters import (
     ParamEntry,
     evaluate_params,
@@ -42,6 +43,7 @@ class ExecuteNode(Action):
     """Run executable EXEC of package PKG as a ROS node."""
 
     TAG = "node"
+    COMPLETES_LATER = True
 
     def __init__(
         self,
@@ -52,8 +54,8 @@ class ExecuteNode(Action):
         node_name: Value | None = None,
         namespace: Value | None = None,
         exec_name: Value | None = None,
-        args: Value | None = None,
-        ros_args: Value | None = None,
+        args: Value | list[Value] | None = None,
+        ros_args: Value | list[Value] | None = None,
         params: list[ParamEntry] | None = None,
         remaps: list[Remap] | None = None,
         location: Location | None = None,
@@ -78,7 +80,7 @@ class ExecuteNode(Action):
             program = context.packages.executable(perform(self.pkg, context), executable)
         else:
             program = [executable]
-        argv = program + (split_command(self.args, context, self.location) if self.args else [])
+        argv = program + self._words(self.args, context)
         ros_args, files = self._ros_arguments(context)
         if ros_args:
             argv += ["--ros-args", *ros_args]
@@ -95,8 +97,7 @@ class ExecuteNode(Action):
 
         out: list[str] = []
         files: dict[str, str] = {}
-        if self.ros_args is not None:
-            out += split_command(self.ros_args, context, self.location)
+        out += self._words(self.ros_args, context)
         if self.node_name is not None:
             out += ["-r", f"__node:={perform(self.node_name, context)}"]
         namespace = self._namespace(context)
@@ -123,6 +124,15 @@ class ExecuteNode(Action):
             out += ["-r", f"{perform(remap.src, context)}:={perform(remap.dst, context)}"]
         return out, files
 
+    def _words(self, value: Value | list[Value] | None, context: LaunchContext) -> list[str]:
+        """``args`` / ``ros_args``: an attribute split like a command line, or (Python's
+        ``arguments=[...]``) one argv word per item."""
+        if value is None:
+            return []
+        if isinstance(value, list):
+            return [perform(word, context) for word in value]
+        return split_command(value, context, self.location)
+
     def _namespace(self, context: LaunchContext) -> str:
         base = context.configurations.get(NAMESPACE_CONFIGURATION, "")
         own = perform(self.namespace, context).strip() if self.namespace is not None else ""
@@ -130,6 +140,10 @@ class ExecuteNode(Action):
             return join_namespace("", base) if base else ""
         return join_namespace(base, own)
 
+    def children(self) -> Sequence[Action]:
+        """The ``on_exit`` actions."""
+        return self.options.on_exit_actions
+
     def execute(self, context: LaunchContext) -> None:
         """Hand the node's process to the runner."""
-        context.runner.start_process(self.evaluate(context))
+        start(self, self.evaluate(context), self.options, context)

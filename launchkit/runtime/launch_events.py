@@ -1,0 +1,117 @@
+"""Launch events from what the supervisor sees: an observer that turns process starts, output
+lines and exits into ROS's ProcessStarted / ProcessIO / ProcessExited / ExecutionComplete
+events in the launch context's queue, then passes them on to the next observer.
+
+The supervisor drains the queue on its loop (:func:`launchkit.description.events.drain_events`),
+so the handlers' actions run after the line that says what happened.
+"""
+
+from __future__ import annotations
+
+from typing import TYPE_CHECKING, Any
+
+from launchkit.description.events import (
+    ExecutionComplete,
+    ProcessExited,
+    ProcessIO,
+    ProcessStarted,
+    Shutdown,
+    dispatch,
+    drain_events,
+)
+from launchkit.errors import LaunchkitError
+from launchkit.runtime.hooks import SupervisorHooks
+from launchkit.runtime.lifecycle import State
+
+if TYPE_CHECKING:
+    from launchkit.description.launch_context import LaunchContext
+    from launchkit.runtime.process import SupervisedProcess
+
+
+class EventRelay(SupervisorHooks):
+    """Emits launch events for the processes the launch file started (not for processes
+    started at a child's request, which no action names), and forwards everything to ``inner``."""
+
+    def __init__(self, inner: SupervisorHooks) -> None:
+        self.inner = inner
+        self.context: LaunchContext | None = None
+
+    def _details(self, process: SupervisedProcess) -> dict[str, Any] | None:
+        spec = process.spec
+        if self.context is None or spec.origin is None:
+            return None
+        return {
+            "action": spec.origin,
+            "name": process.label,
+            "cmd": spec.cmd,
+            "cwd": spec.cwd,
+            "env": spec.env,
+            "pid": process.pid or 0,
+        }
+
+    def drain(self) -> LaunchkitError | None:
+        """Run the handlers of the queued events; the error that stopped them, if any."""
+        if self.context is None:
+            return None
+        try:
+            drain_events(self.context)
+        except LaunchkitError as error:
+            return error
+        return None
+
+    def shutting_down(self, reason: str, due_to_sigint: bool) -> LaunchkitError | None:
+        """The launch starts shutting down: run the OnShutdown handlers now, before any
+        process is signalled (as ROS does); the error that stopped them, if any."""
+        if self.context is None:
+            return None
+        self.context.is_shutdown = True
+        try:
+            dispatch(self.context, Shutdown(reason=reason, due_to_sigint=due_to_sigint))
+        except LaunchkitError as error:
+            return error
+        return None
+
+    def launch_ready(self) -> None:
+        """See :class:`SupervisorHooks`."""
+        self.inner.launch_ready()
+
+    def launch_error(self, message: str) -> None:
+        """See :class:`SupervisorHooks`."""
+        self.inner.launch_error(message)
+
+    def process_started(self, process: SupervisedProcess) -> None:
+        """See :class:`SupervisorHooks`; emits ProcessStarted."""
+        self.inner.process_started(process)
+        details = self._details(process)
+        if details is not None and self.context is not None:
+            self.context.emit(ProcessStarted(**details))
+
+    def process_output(self, process: SupervisedProcess, stream: str, line: str) -> None:
+        """See :class:`SupervisorHooks`; emits ProcessIO when some handler may want it."""
+        self.inner.process_output(process, stream, line)
+        if self.context is None or not self.context.handlers:
+            return
+        details = self._details(process)
+        if details is not None:
+            fd = 2 if stream == "stderr" else 1
+            event = ProcessIO(text=(line + "\n").encode(), fd=fd, **details)
+            self.context.emit(event)
+
+    def process_stopping(self, process: SupervisedProcess) -> None:
+        """See :class:`SupervisorHooks`."""
+        self.inner.process_stopping(process)
+
+    def process_exited(self, process: SupervisedProcess, returncode: int) -> None:
+        """See :class:`SupervisorHooks`; emits ProcessExited, and ExecutionComplete when the
+        process will not be respawned."""
+        self.inner.process_exited(process, returncode)
+        details = self._details(process)
+        if details is None or self.context is None:
+            return
+        self.context.emit(ProcessExited(returncode=returncode, **details))
+        if process.lifecycle.state is not State.BACKOFF:
+            self.context.emit(ExecutionComplete(action=process.spec.origin))
+
+    def shutdown(self, reason: str) -> None:
+        """See :class:`SupervisorHooks`."""
+        self.inner.shutdown(reason)
