@@ -4,12 +4,14 @@ from __future__ import annotations
 
 import os
 import sys
+import sysconfig
 from collections.abc import Mapping
 from pathlib import Path
 from typing import IO
 
 from launchkit.checks import CheckedTree, check_tree, undeclared_arguments
 from launchkit.description.launch_context import LaunchContext, Runner
+from launchkit.description.ros_link import RosLink
 from launchkit.errors import PackageNotFoundError
 from launchkit.frontend.launch_loader import LaunchLoader
 from launchkit.packages import PackageIndex
@@ -75,10 +77,22 @@ def _context(
         packages=packages,
         runner=runner,
         loader=loader.load,
-        environment=dict(os.environ),
+        environment=launch_environment(os.environ),
         log_dir=run_dir,
         configurations=dict(arguments),
     )
+
+
+def launch_environment(environ: Mapping[str, str]) -> dict[str, str]:
+    """The environment a launch starts with: ``environ``, with the folder of launchkit's own
+    scripts (``xacro`` beside ``launchkit``) at the end of ``PATH`` when it is not there, so
+    ``Command(['xacro ', ...])`` works from an environment that was not activated."""
+    environment = dict(environ)
+    scripts = sysconfig.get_path("scripts")
+    folders = environment.get("PATH", os.defpath).split(os.pathsep)
+    if scripts and scripts not in folders:
+        environment["PATH"] = os.pathsep.join([*folders, scripts])
+    return environment
 
 
 def describe(
@@ -165,8 +179,16 @@ def run(
             f"argument '{name}' is not declared or used by "
             f"{path.name} (or the files it includes statically)",
         )
-    supervisor = Supervisor(output, network=NodeNetwork(router), hooks=hooks)
+    network = NodeNetwork(router)
+    supervisor = Supervisor(output, network=network, hooks=hooks)
     context = _context(supervisor, arguments, packages, loader, run_dir)
+
+    def ros_link() -> RosLink:
+        from launchkit.ros_adapter import RosAdapter
+
+        return RosAdapter(lambda: network.ensure(supervisor), context.post)
+
+    context.ros_factory = ros_link
     try:
         return supervisor.run(tree.top, context)
     finally:

@@ -152,6 +152,8 @@ class EventHandler:
         self.entities = list(entities)
         self.handle_once = handle_once
         self.snapshot: Snapshot | None = None
+        #: Registered by launchkit itself (``--print`` does not show it).
+        self.internal = False
 
     def matches(self, event: object) -> bool:
         """Whether this handler reacts to ``event``."""
@@ -212,7 +214,10 @@ def drain_events(context: LaunchContext) -> None:
         return
     context.draining = True
     try:
-        while context.event_queue:
-            dispatch(context, context.event_queue.popleft())
+        while context.posted or context.event_queue:
+            while context.posted:
+                context.posted.popleft()()
+            if context.event_queue:
+                dispatch(context, context.event_queue.popleft())
     finally:
         context.draining = False

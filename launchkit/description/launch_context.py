@@ -27,6 +27,7 @@ from launchkit.packages import PackageIndex
 
 if TYPE_CHECKING:
     from launchkit.description.process_spec import ProcessSpec
+    from launchkit.description.ros_link import RosLink
     from launchkit.errors import LaunchkitError, Location
 
 
@@ -171,6 +172,13 @@ class LaunchContext:
         self.saved_environments: list[dict[str, str]] = []
         #: Told of every handler registered (the ``--print`` recorder shows their actions).
         self.on_register: Callable[[Handler], None] | None = None
+        #: Work posted from other threads (the ROS link's replies), run on the launch's loop;
+        #: ``waker`` makes the loop look (set by the runner).
+        self.posted: deque[Callable[[], None]] = deque()
+        self.waker: Callable[[], None] | None = None
+        #: Makes the launcher's ROS node on first use (None: no ROS, as for ``--print``).
+        self.ros_factory: Callable[[], RosLink] | None = None
+        self._ros: RosLink | None = None
 
     @property
     def configurations(self) -> dict[str, str]:
@@ -197,7 +205,10 @@ class LaunchContext:
         return Path(name)
 
     def cleanup(self) -> None:
-        """Remove the generated files."""
+        """Leave the ROS graph and remove the generated files."""
+        if self._ros is not None:
+            self._ros.close()
+            self._ros = None
         if self._scratch is not None:
             shutil.rmtree(self._scratch, ignore_errors=True)
             self._scratch = None
@@ -205,6 +216,18 @@ class LaunchContext:
     def log(self, level: str, message: str, logger: str = "launch") -> None:
         """Print a launch line through the runner."""
         self.runner.log(level, logger, message)
+
+    def post(self, work: Callable[[], None]) -> None:
+        """Run ``work`` on the launch's loop soon (callable from any thread)."""
+        self.posted.append(work)
+        if self.waker is not None:
+            self.waker()
+
+    def ros(self) -> RosLink | None:
+        """The launcher's ROS node (made on first use), or None when the launch has none."""
+        if self._ros is None and self.ros_factory is not None:
+            self._ros = self.ros_factory()
+        return self._ros
 
     def emit(self, event: object) -> None:
         """Queue ``event`` for the handlers (the runner drains the queue)."""

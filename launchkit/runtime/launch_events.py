@@ -8,6 +8,9 @@ so the handlers' actions run after the line that says what happened.
 
 from __future__ import annotations
 
+import os
+import selectors
+from collections.abc import Callable
 from typing import TYPE_CHECKING, Any
 
 from launchkit.description.events import (
@@ -35,6 +38,8 @@ class EventRelay(SupervisorHooks):
     def __init__(self, inner: SupervisorHooks) -> None:
         self.inner = inner
         self.context: LaunchContext | None = None
+        self._wakeup: tuple[int, int] | None = None
+        self._selector: selectors.BaseSelector | None = None
 
     def _details(self, process: SupervisedProcess) -> dict[str, Any] | None:
         spec = process.spec
@@ -49,15 +54,52 @@ class EventRelay(SupervisorHooks):
             "pid": process.pid or 0,
         }
 
-    def drain(self) -> LaunchkitError | None:
-        """Run the handlers of the queued events; the error that stopped them, if any."""
+    def attach(self, context: LaunchContext, selector: selectors.BaseSelector) -> LaunchContext:
+        """Relay to ``context``; work posted to it from other threads wakes ``selector``."""
+        self.context = context
+        self._wakeup = os.pipe()
+        os.set_blocking(self._wakeup[0], False)
+        os.set_blocking(self._wakeup[1], False)
+        selector.register(self._wakeup[0], selectors.EVENT_READ, self._woken)
+        self._selector = selector
+        context.waker = self._wake
+        return context
+
+    def _wake(self) -> None:
+        if self._wakeup is not None:
+            try:
+                os.write(self._wakeup[1], b"x")
+            except (BlockingIOError, OSError):
+                pass  # a wake-up is pending already (or the launch is over)
+
+    def _woken(self) -> None:
+        if self._wakeup is not None:
+            try:
+                while os.read(self._wakeup[0], 4096):
+                    pass
+            except BlockingIOError:
+                pass
+
+    def close(self) -> None:
+        """Release the wake-up pipe."""
+        if self.context is not None:
+            self.context.waker = None
+        if self._wakeup is not None:
+            if self._selector is not None:
+                self._selector.unregister(self._wakeup[0])
+            for fd in self._wakeup:
+                os.close(fd)
+            self._wakeup = None
+
+    def drain(self, fail: Callable[[LaunchkitError], None]) -> None:
+        """Run the posted work and the handlers of the queued events; ``fail`` with the error
+        that stopped them, if any."""
         if self.context is None:
-            return None
+            return
         try:
             drain_events(self.context)
         except LaunchkitError as error:
-            return error
-        return None
+            fail(error)
 
     def shutting_down(self, reason: str, due_to_sigint: bool) -> LaunchkitError | None:
         """The launch starts shutting down: run the OnShutdown handlers now, before any

@@ -67,7 +67,10 @@ class Recorder:
             context.on_register = self.handler_registered
 
     def handler_registered(self, handler: Handler) -> None:
-        """Record the handler and the actions it would run (those known without an event)."""
+        """Record the handler and the actions it would run (those known without an event);
+        launchkit's own handlers are not shown."""
+        if getattr(handler, "internal", False):
+            return
         describe: Callable[[], str] | None = getattr(handler, "describe", None)
         item = Recorded("handler", text=describe() if describe else type(handler).__name__)
         self._target.append(item)

@@ -122,14 +122,14 @@ class Supervisor:
 
         Errors in the first pass (before anything started) propagate as exceptions.
         """
-        self._context = self._relay.context = context
+        self._context = self._relay.attach(context, self._selector)
         self._signals.install()
         self._selector.register(self._signals.fd, selectors.EVENT_READ, self._read_signals)
         try:
             self._open_requests()
             self._first_pass(description, context)
             self.hooks.launch_ready()
-            self._drain()
+            self._relay.drain(self.fail)
             while not self._done():
                 self.step(self._timeout())
         finally:
@@ -180,12 +180,7 @@ class Supervisor:
             key.data()
         self._io.poll(self.processes)
         self._run_due()
-        self._drain()
-
-    def _drain(self) -> None:  # the handlers of what happened; an error in them shuts down
-        error = self._relay.drain()
-        if error is not None:
-            self.fail(error)
+        self._relay.drain(self.fail)  # the handlers of what happened; an error shuts down
 
     def _done(self) -> bool:
         if any(p.alive for p in self.processes):
@@ -396,5 +391,6 @@ class Supervisor:
             self.network.close()
         if self._context is not None:
             self._context.cleanup()
+        self._relay.close()
         self._selector.close()
         self._signals.close()

@@ -5,6 +5,7 @@ from __future__ import annotations
 import os
 import re
 import shlex
+import shutil
 from collections.abc import Sequence
 from dataclasses import dataclass, field
 from typing import TYPE_CHECKING
@@ -98,10 +99,14 @@ class ProcessBuilder:
         o, ctx = self.options, self.context
         if not words:
             raise RuntimeLaunchError("the command is empty", self.location, expected="a program")
-        cmd = words if prefixed else self.launch_prefix(words[0]) + words
         env = {} if o.clean_env else dict(ctx.environment)
         for name, value in o.env:
             env[perform(name, ctx)] = perform(value, ctx)
+        stand_in = None if is_node or prefixed else self._stand_in(words[0], env)
+        if stand_in is not None:
+            words = stand_in + words[1:]
+            is_node = True  # launchkit's stand-ins are ROS nodes: they need the router
+        cmd = words if prefixed else self.launch_prefix(words[0]) + words
         env.setdefault("PYTHONUNBUFFERED", "1")
         output = self._output()
         emulate_default = condition_value(ctx.configurations.get("emulate_tty", "false")) or False
@@ -134,6 +139,22 @@ class ProcessBuilder:
         )
         spec.env_changes = _changes(ctx.initial_environment, env)
         return spec
+
+    def _stand_in(self, program: str, env: dict[str, str]) -> list[str] | None:
+        """launchkit's stand-in for a program called by bare name that is not installed
+        (``gazebo``, ``gzclient``, ``rviz2``), said on the console; None otherwise."""
+        if "/" in program or shutil.which(program, path=env.get("PATH", os.defpath)):
+            return None
+        found = self.context.packages.stand_in(program)
+        if found is None:
+            return None
+        package, argv = found
+        self.context.log(
+            "INFO",
+            f"'{program}' is not installed: running launchkit's stand-in from package "
+            f"'{package}' in its place",
+        )
+        return argv
 
     def _output(self) -> str:
         override = self.context.initial_environment.get("OVERRIDE_LAUNCH_PROCESS_OUTPUT")

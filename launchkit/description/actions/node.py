@@ -133,6 +133,12 @@ class ExecuteNode(Action):
             return [perform(word, context) for word in value]
         return split_command(value, context, self.location)
 
+    def full_name(self, context: LaunchContext) -> str:
+        """The node's fully qualified name (its ``name``, else the executable's)."""
+        name = perform(self.node_name, context) if self.node_name is not None else ""
+        name = name or os.path.basename(perform(self.exec, context))
+        return join_namespace(self._namespace(context) or "/", name)
+
     def _namespace(self, context: LaunchContext) -> str:
         base = context.configurations.get(NAMESPACE_CONFIGURATION, "")
         own = perform(self.namespace, context).strip() if self.namespace is not None else ""

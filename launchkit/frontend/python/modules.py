@@ -227,7 +227,9 @@ def _ros_modules() -> list[types.ModuleType]:
     parameter_descriptions = _module("launch_ros.parameter_descriptions", **parameters)
     descriptions = _module("launch_ros.descriptions", ComposableNode=C.ComposableNode, **parameters)
     lifecycle_events = _module(
-        "launch_ros.events.lifecycle", ChangeState=Y.ChangeState, StateTransition=Y.StateTransition
+        "launch_ros.events.lifecycle",
+        ChangeState=Y.ChangeStateEvent,
+        StateTransition=Y.StateTransition,
     )
     ros_events = _module(
         "launch_ros.events", lifecycle=lifecycle_events, matches_node_name=Y.matches_node_name

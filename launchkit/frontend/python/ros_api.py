@@ -89,37 +89,44 @@ def remap_rules(remappings: Iterable[Any] | None) -> list[lk.Remap]:
     return rules
 
 
+def node_arguments(
+    *,
+    executable: Any,
+    package: Any = None,
+    name: Any = None,
+    namespace: Any = None,
+    exec_name: Any = None,
+    parameters: Iterable[Any] | None = None,
+    remappings: Iterable[Any] | None = None,
+    arguments: Iterable[Any] | None = None,
+    ros_arguments: Iterable[Any] | None = None,
+    condition: Condition | None = None,
+    **options: Any,
+) -> dict[str, Any]:
+    """``Node(...)``'s keyword arguments as launchkit's ExecuteNode arguments."""
+    return dict(
+        pkg=optional_value(package),
+        exec=to_value(executable),
+        options=process_options(**options),
+        node_name=optional_value(name),
+        namespace=optional_value(namespace),
+        exec_name=optional_value(exec_name),
+        args=words_of(arguments) if arguments is not None else None,
+        ros_args=words_of(ros_arguments) if ros_arguments is not None else None,
+        params=flat_parameters(parameters),
+        remaps=remap_rules(remappings),
+        location=here(),
+        condition=condition,
+    )
+
+
 class Node(lk.ExecuteNode):
     """``launch_ros.actions.Node``."""
 
-    def __init__(
-        self,
-        *,
-        executable: Any,
-        package: Any = None,
-        name: Any = None,
-        namespace: Any = None,
-        exec_name: Any = None,
-        parameters: Iterable[Any] | None = None,
-        remappings: Iterable[Any] | None = None,
-        arguments: Iterable[Any] | None = None,
-        ros_arguments: Iterable[Any] | None = None,
-        condition: Condition | None = None,
-        **options: Any,
-    ) -> None:
+    def __init__(self, **kwargs: Any) -> None:
+        arguments = node_arguments(**kwargs)
         super().__init__(
-            optional_value(package),
-            to_value(executable),
-            process_options(**options),
-            node_name=optional_value(name),
-            namespace=optional_value(namespace),
-            exec_name=optional_value(exec_name),
-            args=words_of(arguments) if arguments is not None else None,
-            ros_args=words_of(ros_arguments) if ros_arguments is not None else None,
-            params=flat_parameters(parameters),
-            remaps=remap_rules(remappings),
-            location=here(),
-            condition=condition,
+            arguments.pop("pkg"), arguments.pop("exec"), arguments.pop("options"), **arguments
         )
 
 
