@@ -281,7 +281,7 @@ class Supervisor:
         if self.shutting_down:
             return
         if required:
-            if code != 0:
+            if code != 0 and not outcome.expected:  # not when the launch stopped it itself
                 self.exit_code = self.exit_code or (code if code > 0 else 128 - code)
             self.begin_shutdown(
                 f"process[{process.label}] was required: shutting down launched system"
