@@ -110,7 +110,7 @@ class ExecuteProcess(lk.ExecuteProcess):
         self, *, cmd: Iterable[Any], condition: Condition | None = None, **options: Any
     ) -> None:
         self.words = words_of(cmd)
-        super().__init__(argv_text(list(cmd)), process_options(**options), here(), condition)
+        super().__init__(argv_text(self.words), process_options(**options), here(), condition)
 
     def evaluate(self, context: LaunchContext) -> ProcessSpec:
         """The process, its argv built word by word."""

@@ -47,12 +47,20 @@ class SubstitutionLike:
 
 def to_value(item: Any) -> Value:
     """A str, a stand-in substitution, or a (nested) list of them, as one launchkit value."""
+    kind = type(item)
+    if kind is str:
+        return (Text(item),)
+    if kind is list or kind is tuple:  # the common cases first: launch files build thousands
+        parts: list[Substitution] = []
+        for element in item:
+            parts.extend(to_value(element))
+        return tuple(parts)
     if item is None:
         return ()
-    if isinstance(item, str):
-        return (Text(item),)
     if isinstance(item, SubstitutionLike):
         return (item.inner,)
+    if isinstance(item, str):
+        return (Text(str(item)),)
     if isinstance(item, Substitution):
         return (item,)
     if isinstance(item, Path):
@@ -60,10 +68,7 @@ def to_value(item: Any) -> Value:
     if isinstance(item, int | float | bool):
         return (Text(str(item).lower() if isinstance(item, bool) else str(item)),)
     if isinstance(item, Iterable):
-        parts: list[Substitution] = []
-        for element in item:
-            parts.extend(to_value(element))
-        return tuple(parts)
+        return to_value(list(item))
     raise LaunchFileError(
         f"cannot use a {type(item).__name__} as text in a launch file",
         here(),
@@ -171,11 +176,12 @@ def unsupported(name: str, why: str = "") -> type:
     return type(name.rpartition(".")[2], (), {"__init__": refuse})
 
 
-def argv_text(items: Any) -> tuple[Any, ...]:
-    """A command given as a list of words, as one command-line value (each word quoted)."""
-    if isinstance(items, str | SubstitutionLike):
-        return to_value(items)
-    parts: list[Any] = []
-    for index, item in enumerate(items):
-        parts.extend([" " if index else "", "'", item, "'"])
-    return to_value(parts)
+def argv_text(words: list[Value]) -> Value:
+    """Argv words as one value, separated by spaces (what ``--print`` and the checks read of
+    a command; the process itself is built word by word)."""
+    parts: list[Substitution] = []
+    for index, word in enumerate(words):
+        if index:
+            parts.append(Text(" "))
+        parts.extend(word)
+    return tuple(parts)
