@@ -37,8 +37,8 @@ class Scope:
 
     configurations: dict[str, str] = field(default_factory=dict)
     environment: dict[str, str] = field(default_factory=dict)
-    global_params: list[tuple[str, str]] = field(default_factory=list)
-    params_files: list[str] = field(default_factory=list)
+    #: ``SetParameter`` (name, value text) and ``SetParametersFromFile`` (a path), in order
+    global_params: list[tuple[str, str] | str] = field(default_factory=list)
     remaps: list[tuple[str, str]] = field(default_factory=list)
 
     def copy(self) -> Scope:

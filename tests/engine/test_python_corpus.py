@@ -132,7 +132,7 @@ def test_each_file_prints(name: str) -> None:
 @pytest.mark.usefixtures("stub_packages")
 def test_what_the_prints_say() -> None:
     nav2 = printed("nav2_bringup.launch.py", use_sim_time="true")
-    assert "/tf:=tf" in nav2 and "--log-level info" in nav2 and "use_sim_time: true" in nav2
+    assert "/tf:=tf" in nav2 and "--log-level info" in nav2 and "-p use_sim_time:=True" in nav2
     namespaced = printed("nav2_bringup.launch.py", use_namespace="true", namespace="r1")
     assert "-r __ns:=/r1" in namespaced
 

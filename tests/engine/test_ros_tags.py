@@ -66,13 +66,13 @@ def test_node_label_is_exec_name(evaluate_xml: EvaluateXml, packages: PackageInd
     xml = '<launch><node pkg="demo" exec="talker" exec_name="speaker"/></launch>'
     spec = evaluate_xml(xml, packages=packages).processes[0]
     assert spec.name == "speaker"
-    assert "--ros-args" not in spec.cmd
+    assert spec.cmd[3:] == ["--ros-args"]  # launch_ros always opens its own section
 
 
 def test_node_ros_args_attribute(evaluate_xml: EvaluateXml, packages: PackageIndex) -> None:
     xml = '<launch><node pkg="demo" exec="talker" ros_args="--log-level debug"/></launch>'
     spec = evaluate_xml(xml, packages=packages).processes[0]
-    assert ros_args(spec.cmd) == ["--log-level", "debug"]
+    assert spec.cmd[3:] == ["--ros-args", "--log-level", "debug", "--ros-args"]
 
 
 def test_params_become_a_ros_params_file(evaluate_xml: EvaluateXml, packages: PackageIndex) -> None:
@@ -90,7 +90,11 @@ def test_params_become_a_ros_params_file(evaluate_xml: EvaluateXml, packages: Pa
       </node>
     </launch>"""
     spec = evaluate_xml(xml, packages=packages).processes[0]
-    (content,) = params_files(spec.cmd)
+    files = params_files(spec.cmd)
+    assert len(files) == 7  # one file per <param>, in document order, as launch_ros does
+    content: dict[str, dict[str, dict[str, object]]] = {"/**": {"ros__parameters": {}}}
+    for document in files:
+        content["/**"]["ros__parameters"].update(document["/**"]["ros__parameters"])  # type: ignore[index]
     assert content == {
         "/**": {
             "ros__parameters": {
@@ -136,7 +140,7 @@ def test_push_ros_namespace_both_spellings_and_scoping(
     assert "__ns:=/outer/inner" in ros_args(result.process("deep").cmd)
     assert "__ns:=/outer/rel" in ros_args(result.process("mid").cmd)
     assert "__ns:=/abs" in ros_args(result.process("abs").cmd)
-    assert "--ros-args" not in result.process("top").cmd
+    assert result.process("top").cmd[3:] == ["--ros-args"]
 
 
 def test_set_parameter_set_remap_and_use_sim_time(
@@ -154,11 +158,11 @@ def test_set_parameter_set_remap_and_use_sim_time(
     </launch>"""
     result = evaluate_xml(xml, packages=packages)
     inside = result.process("inside").cmd
-    assert params_files(inside) == [
-        {"/**": {"ros__parameters": {"use_sim_time": True, "robot": "wheel"}}}
-    ]
-    assert "scan:=/base_scan" in ros_args(inside)
-    assert "--ros-args" not in result.process("outside").cmd
+    # set_use_sim_time is the launch's own clock in ROS 2 Jazzy, not the nodes' parameter
+    assert ros_args(inside) == [
+        "-p", "use_sim_time:=False", "-p", "robot:=wheel", "-r", "scan:=/base_scan",
+    ]  # fmt: skip
+    assert result.process("outside").cmd[3:] == ["--ros-args"]
 
 
 def test_set_parameters_from_file(

@@ -24,7 +24,7 @@ from launchkit.description.actions.parameters import (
     evaluate_params,
     typed_value,
 )
-from launchkit.description.actions.ros_scope import NAMESPACE_CONFIGURATION, join_namespace
+from launchkit.description.actions.ros_scope import NAMESPACE_CONFIGURATION, ros_namespace
 from launchkit.description.ros_link import LoadRequest
 from launchkit.description.substitutions.base import Value, perform
 from launchkit.errors import Location
@@ -54,9 +54,8 @@ def load_request(node: ComposableNode, context: LaunchContext) -> LoadRequest | 
     """The LoadNode request for ``node`` in ``context`` (None when its condition is false)."""
     if node.condition is not None and not node.condition.evaluate(context):
         return None
-    own = perform(node.namespace, context).strip() if node.namespace is not None else ""
-    base = context.configurations.get(NAMESPACE_CONFIGURATION, "")
-    namespace = join_namespace(base, own) if (own or base) else ""
+    own = perform(node.namespace, context).strip() if node.namespace is not None else None
+    namespace = ros_namespace(context.configurations.get(NAMESPACE_CONFIGURATION), own) or ""
     request = LoadRequest(
         package=perform(node.package, context),
         plugin=perform(node.plugin, context),
@@ -65,10 +64,11 @@ def load_request(node: ComposableNode, context: LaunchContext) -> LoadRequest | 
     )
     request.remaps = [f"{src}:={dst}" for src, dst in context.scope.remaps]
     request.remaps += [f"{perform(r.src, context)}:={perform(r.dst, context)}" for r in node.remaps]
-    for name, text in context.scope.global_params:
-        request.parameters.append((name, typed_value(text, None, node.location)))
-    for path in context.scope.params_files:
-        request.parameters.append(Path(path))
+    for item in context.scope.global_params:
+        if isinstance(item, str):
+            request.parameters.append(Path(item))
+        else:
+            request.parameters.append((item[0], typed_value(item[1], None, node.location)))
     for entry in node.params:
         values, files = evaluate_params([entry], context)
         request.parameters.extend(values.items())

@@ -53,7 +53,22 @@ class ParamFile:
     location: Location | None = None
 
 
-ParamEntry = ParamValue | ParamGroup | ParamFile
+@dataclass
+class ParamDict:
+    """Parameters given together (a Python ``{...}`` of ``Node(parameters=[...])``): launch_ros
+    writes them to one params file. A lone ``<param>`` of XML is its own file too."""
+
+    entries: list[ParamValue | ParamGroup] = field(default_factory=list)
+
+
+@dataclass
+class ParamRule:
+    """``launch_ros.descriptions.Parameter(name, value)``: one ``-p name:=value`` item."""
+
+    param: ParamValue
+
+
+ParamEntry = ParamValue | ParamGroup | ParamFile | ParamDict | ParamRule
 
 
 def typed_value(text: str, kind: str | None, location: Location | None) -> Any:
@@ -122,13 +137,19 @@ def evaluate_params(
 
     for entry in entries:
         if isinstance(entry, ParamFile):
-            files.append(_params_file(entry, context))
+            files.append(params_file(entry, context))
+        elif isinstance(entry, ParamDict):
+            visit(entry.entries, "")
+        elif isinstance(entry, ParamRule):
+            visit([entry.param], "")
         else:
             visit([entry], "")
     return values, files
 
 
-def _params_file(entry: ParamFile, context: LaunchContext) -> Path:
+def params_file(entry: ParamFile, context: LaunchContext) -> Path:
+    """The file a ``<param from=...>`` names (a copy with its substitutions performed when
+    ``allow_substs``); an error when it does not exist."""
     path = Path(perform(entry.path, context))
     if not path.is_file():
         raise RuntimeLaunchError(

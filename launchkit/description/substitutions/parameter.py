@@ -21,9 +21,9 @@ class Param(Call):
     def perform(self, context: LaunchContext) -> str:
         """The parameter's value, or DEFAULT, or an error naming the parameter."""
         name = self.arg(0, context)
-        for key, value in reversed(context.scope.global_params):
-            if key == name:
-                return value
+        for item in reversed(context.scope.global_params):
+            if not isinstance(item, str) and item[0] == name:
+                return item[1]
         if len(self.args) > 1:
             return self.arg(1, context)
         raise self.fail(

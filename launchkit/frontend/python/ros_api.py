@@ -9,7 +9,7 @@ from typing import Any
 
 from launchkit.description import actions as lk
 from launchkit.description.actions.base import Action
-from launchkit.description.actions.parameters import ParamEntry
+from launchkit.description.actions.parameters import ParamDict, ParamEntry
 from launchkit.description.conditions import Condition
 from launchkit.description.launch_context import LaunchContext
 from launchkit.description.substitutions import ExecInPkg, FindPkgPrefix, FindPkgShare, Param
@@ -68,11 +68,12 @@ class ParameterSubstitution(SubstitutionLike):
 
 
 def flat_parameters(parameters: Iterable[Any] | None) -> list[ParamEntry]:
-    """A Node's parameters list as launchkit's entries, in order."""
-    entries: list[ParamEntry] = []
-    for item in parameter_entries(parameters or []):
-        entries.extend(item if isinstance(item, list) else [item])
-    return entries
+    """A Node's parameters list as launchkit's entries, in order (a dict stays together: it
+    is one params file)."""
+    return [
+        ParamDict(item) if isinstance(item, list) else item  # type: ignore[arg-type]
+        for item in parameter_entries(parameters or [])
+    ]
 
 
 def remap_rules(remappings: Iterable[Any] | None) -> list[lk.Remap]:
@@ -138,9 +139,24 @@ class PushRosNamespace(lk.PushRosNamespace):
 
 
 class SetParameter(lk.SetParameter):
-    """``launch_ros.actions.SetParameter``."""
+    """``launch_ros.actions.SetParameter`` (a Python value keeps its type: ``True``, ``5``,
+    ``[1, 2]``)."""
 
     def __init__(self, name: Any, value: Any, *, condition: Condition | None = None) -> None:
+        if isinstance(value, bool | int | float) or (
+            isinstance(value, list | tuple)
+            and all(isinstance(v, bool | int | float) for v in value)
+        ):
+            import yaml
+
+            value = (
+                yaml.safe_dump(
+                    list(value) if isinstance(value, tuple) else value, default_flow_style=True
+                )
+                .strip()
+                .removesuffix("...")
+                .strip()
+            )
         super().__init__(to_value(name), to_value(value), here(), condition)
 
 

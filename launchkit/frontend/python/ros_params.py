@@ -16,7 +16,7 @@ from typing import Any, get_args
 import yaml
 
 from launchkit.description import actions as lk
-from launchkit.description.actions.parameters import ParamEntry
+from launchkit.description.actions.parameters import ParamEntry, ParamRule
 from launchkit.description.substitutions.base import Text
 from launchkit.errors import LaunchFileError
 from launchkit.frontend.python.values import SubstitutionLike, here, to_value
@@ -139,7 +139,9 @@ def parameter_entries(parameters: Iterable[Any]) -> list[list[ParamEntry] | Para
         elif isinstance(item, ParameterFile):
             out.append(lk.ParamFile(to_value(item.param_file), item.allow_substs, here()))
         elif isinstance(item, Parameter):
-            out.append(_entry(item.name, item.value))
+            entry = _entry(item.name, item.value)
+            assert isinstance(entry, lk.ParamValue)
+            out.append(ParamRule(entry))
         else:
             out.append(lk.ParamFile(to_value(item), False, here()))
     return out

@@ -17,7 +17,7 @@ from launchkit.description.actions import (
     SetUseSimTime,
 )
 from launchkit.description.actions.composition import ComposableNodeContainer
-from launchkit.description.actions.parameters import PARAM_TYPES
+from launchkit.description.actions.parameters import PARAM_TYPES, ParamEntry
 from launchkit.frontend.tags.launch import leaf, only_children, parse_process_options
 
 if TYPE_CHECKING:
@@ -78,7 +78,7 @@ def parse_node(entity: Entity, parser: ActionParser, skip: tuple[str, ...] = ())
     also makes the node a ``<node_container>``)."""
     allowed = ("param", "remap", "env")
     children = [c for c in only_children(entity, allowed + skip) if c.tag in allowed]
-    params = [parse_param(c) for c in children if c.tag == "param"]
+    params: list[ParamEntry] = [parse_param(c) for c in children if c.tag == "param"]
     remaps = []
     for child in children:
         if child.tag == "remap":
