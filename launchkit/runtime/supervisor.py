@@ -360,7 +360,8 @@ class Supervisor:
                 else f"received {name}"
             )
             self.log("WARNING", "launch", what)
-            self.begin_shutdown("shutting down")
+            cause = "ctrl-c (SIGINT)" if signum == signal.SIGINT else name  # ROS's reasons
+            self.begin_shutdown("shutting down", cause=cause)
             return
         stopping = [p for p in self.processes if p.alive]
         waiting = ", ".join(f"{p.label} [pid {p.pid}]" for p in stopping) or "nothing"

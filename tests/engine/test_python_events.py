@@ -136,3 +136,29 @@ def generate_launch_description():
     gone = index_of(lines, "[INFO] [launch.user]: sleeper is gone")
     required = index_of(lines, "process[sleeper-1] was required: shutting down launched system")
     assert stopped < signal < gone and signal < required
+
+
+def test_on_shutdown_hears_ctrl_c_before_processes_are_signalled(
+    launch_py: Callable[..., Launcher],
+) -> None:
+    code = """
+from launch import LaunchDescription
+from launch.actions import ExecuteProcess, LogInfo, RegisterEventHandler
+from launch.event_handlers import OnShutdown
+from launch.substitutions import LocalSubstitution
+
+
+def generate_launch_description():
+    return LaunchDescription([
+        ExecuteProcess(cmd=['sleep', '30'], name='sleeper'),
+        RegisterEventHandler(OnShutdown(on_shutdown=[LogInfo(
+            msg=['Launch was asked to shutdown: ', LocalSubstitution('event.reason')])])),
+    ])
+"""
+    launcher = launch_py(code)
+    launcher.wait_line("process started")
+    launcher.signal(2)
+    assert launcher.finish() == 0
+    lines = launcher.lines
+    asked = index_of(lines, "[INFO] [launch.user]: Launch was asked to shutdown: ctrl-c (SIGINT)")
+    assert asked < index_of(lines, "sending signal 'SIGINT' to process[sleeper-1]")
