@@ -40,6 +40,7 @@ class EventRelay(SupervisorHooks):
         self.context: LaunchContext | None = None
         self._wakeup: tuple[int, int] | None = None
         self._selector: selectors.BaseSelector | None = None
+        self._error: LaunchkitError | None = None
 
     def _details(self, process: SupervisedProcess) -> dict[str, Any] | None:
         spec = process.spec
@@ -94,12 +95,24 @@ class EventRelay(SupervisorHooks):
     def drain(self, fail: Callable[[LaunchkitError], None]) -> None:
         """Run the posted work and the handlers of the queued events; ``fail`` with the error
         that stopped them, if any."""
+        if self._error is not None:
+            error, self._error = self._error, None
+            fail(error)
         if self.context is None:
             return
         try:
             drain_events(self.context)
         except LaunchkitError as error:
             fail(error)
+
+    def _drain_now(self) -> None:
+        """Run the handlers at once (a line's handlers before the exit that may follow it);
+        an error is reported by the next :meth:`drain`."""
+        if self.context is not None:
+            try:
+                drain_events(self.context)
+            except LaunchkitError as error:
+                self._error = self._error or error
 
     def shutting_down(self, reason: str, due_to_sigint: bool) -> LaunchkitError | None:
         """The launch starts shutting down: run the OnShutdown handlers now, before any
@@ -138,6 +151,7 @@ class EventRelay(SupervisorHooks):
             fd = 2 if stream == "stderr" else 1
             event = ProcessIO(text=(line + "\n").encode(), fd=fd, **details)
             self.context.emit(event)
+            self._drain_now()
 
     def process_stopping(self, process: SupervisedProcess) -> None:
         """See :class:`SupervisorHooks`."""

@@ -92,7 +92,11 @@ def test_handlers_react_in_order(launch_py: Callable[..., Launcher]) -> None:
     shutdown = index_of(lines, "[INFO] [launch.user]: shutting down because the worker is done")
     signal = index_of(lines, "sending signal 'SIGINT' to process[sleeper-2]")
     sleeper = index_of(lines, "[INFO] [launch.user]: sleeper exited: -2")
-    assert started < on_start and said < heard < died < on_exit < shutdown < signal < sleeper
+    order = [started, on_start, said, heard, died, on_exit, shutdown, signal, sleeper]
+    assert started < on_start and said < heard < died < on_exit < shutdown < signal < sleeper, (
+        order,
+        lines,
+    )
     assert index_of(lines, "timer fired") < index_of(lines, "timer complete")
 
 
@@ -162,3 +166,39 @@ def generate_launch_description():
     lines = launcher.lines
     asked = index_of(lines, "[INFO] [launch.user]: Launch was asked to shutdown: ctrl-c (SIGINT)")
     assert asked < index_of(lines, "sending signal 'SIGINT' to process[sleeper-1]")
+
+
+def test_opaque_functions_run_when_reached(launch_py: Callable[..., Launcher]) -> None:
+    code = f"""
+from launch import LaunchDescription
+from launch.actions import DeclareLaunchArgument, ExecuteProcess, OpaqueFunction
+from launch.actions import RegisterEventHandler
+from launch.event_handlers import OnProcessExit
+
+
+def start_echo(context):
+    word = context.launch_configurations['word']
+    return [ExecuteProcess(cmd=['{PY}', '-c', f'print("{{word}}")'], name='echo',
+                           output='screen')]
+
+
+def fail_later(context):
+    raise RuntimeError('no map for ' + context.launch_configurations['word'])
+
+
+def generate_launch_description():
+    return LaunchDescription([
+        DeclareLaunchArgument('word', default_value='hello'),
+        OpaqueFunction(function=start_echo),
+        RegisterEventHandler(OnProcessExit(on_exit=[OpaqueFunction(function=fail_later)])),
+    ])
+"""
+    launcher = launch_py(code, "word:=bonjour")
+    assert launcher.finish() == 1
+    launcher.wait_line("[echo-1] bonjour")
+    line = next(i for i, text in enumerate(code.splitlines(), 1) if "raise RuntimeError" in text)
+    error = launcher.wait_line("error: OpaqueFunction fail_later()")
+    assert (
+        f"events.launch.py:{line}: error: OpaqueFunction fail_later() raised RuntimeError: "
+        "no map for bonjour" in error
+    )
