@@ -1,16 +1,20 @@
 """Benchmark: what the launch engine costs (run by hand; results go in docs/benchmarks.md).
 
-    python bench/launch_overhead.py [--repeat 5]
+    python bench/launch_overhead.py [--repeat 5] [--ros-python VENV/bin/python]
 
 Measures, each as the median of --repeat runs, beside a baseline measured in the same run:
   * `launchkit run` of an empty launch file vs starting the Python interpreter;
   * N = 1, 10, 100 short processes (`true`) run to completion vs a plain Popen/wait loop;
   * SIGINT to exit with 10 sleeping children;
-  * parse + check of a 1000-entity file in-process (ROS 2 launch: 1.6 s on this machine);
-  * the same for a 1000-entity Python launch file, loaded and evaluated, beside ROS 2's own
-    `launch` doing the same in the same run (``--ros-python VENV/bin/python``: a venv built
-    with /work/shared/tools/ros2-reference/);
+  * parse + check of a 1000-entity file in-process, XML and the same file in YAML (ROS 2
+    launch: 1.6 s for the XML one on this machine);
+  * a 1000-entity Python launch file, loaded and evaluated, beside ROS 2's own launch doing
+    the same in the same run (with --ros-python);
   * the launcher's peak RSS with 100 children.
+
+With --ros-python (the Python of a venv holding the real Jazzy launch stack, built with
+../shared/tools/ros2-reference/), ROS's own load + parse_description of the same XML and YAML
+files is timed in the same run, in that interpreter.
 """
 
 from __future__ import annotations
@@ -192,11 +196,70 @@ def python_file_times(
     )
 
 
+ROS_PARSE = """
+import statistics, sys, time
+from launch.frontend import Parser
+samples = []
+for _ in range(int(sys.argv[2])):
+    start = time.perf_counter()
+    root, parser = Parser.load(sys.argv[1])
+    parser.parse_description(root)
+    samples.append(time.perf_counter() - start)
+print(statistics.median(samples))
+"""
+
+
+def big_files(directory: Path) -> tuple[Path, Path]:
+    """The same 1004-entity launch file in XML and in YAML: 334 groups with a condition, each
+    holding a let and an executable whose command has substitutions (none inside quotes, which
+    ROS cannot parse, so that ROS can read the same files)."""
+    body = "\n".join(
+        f'<group if="$(var on)"><let name="v{i}" value="$(var base)-{i}"/>'
+        f'<executable cmd="echo $(var v{i}) $(env HOME)" name="p{i}" output="screen"/>'
+        "</group>"
+        for i in range(334)
+    )
+    xml = write(
+        directory,
+        "big.launch.xml",
+        '<arg name="on" default="true"/><arg name="base" default="b"/>\n' + body,
+    )
+    groups = "".join(
+        f"- group:\n    if: $(var on)\n    children:\n"
+        f"    - let: {{name: v{i}, value: $(var base)-{i}}}\n"
+        f"    - executable: {{cmd: echo $(var v{i}) $(env HOME), name: p{i},"
+        " output: screen}\n"
+        for i in range(334)
+    )
+    yaml_file = directory / "big.launch.yaml"
+    yaml_file.write_text(
+        "launch:\n- arg: {name: 'on', default: 'true'}\n- arg: {name: base, default: b}\n" + groups
+    )
+    return xml, yaml_file
+
+
+def ros_parse_time(ros_python: str, path: Path, repeat: int) -> float | str:
+    """ROS's median load + parse_description of ``path``, in the reference interpreter (or
+    the last line of its error)."""
+    # the venv's prefix plays /opt/ros/jazzy (launch finds its grammar through the ament index)
+    prefix = str(Path(ros_python).absolute().parents[1])
+    result = subprocess.run(
+        [ros_python, "-c", ROS_PARSE, str(path), str(repeat)],
+        capture_output=True,
+        text=True,
+        check=False,
+        env={**os.environ, "AMENT_PREFIX_PATH": prefix},
+    )
+    if result.returncode:
+        return (result.stderr.strip().splitlines() or ["failed"])[-1]
+    return float(result.stdout.split()[-1])
+
+
 def main() -> None:
     """Run every measurement and print one line each."""
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--repeat", type=int, default=5)
-    parser.add_argument("--ros-python", help="python of a ROS 2 reference venv, to compare")
+    parser.add_argument("--ros-python", help="the Python of a venv with the Jazzy launch stack")
     options = parser.parse_args()
     repeat = options.repeat
     print(
@@ -235,23 +298,23 @@ def main() -> None:
         from launchkit.frontend.launch_loader import LaunchLoader
         from launchkit.packages import PackageIndex
 
-        body = "\n".join(
-            f'<group if="$(var on)"><let name="v{i}" value="$(var base)-{i}"/>'
-            f'<executable cmd="echo $(var v{i}) \'$(env HOME)\'" name="p{i}" output="screen"/>'
-            "</group>"
-            for i in range(334)
-        )
-        big = write(
-            directory,
-            "big.launch.xml",
-            '<arg name="on" default="true"/><arg name="base" default="b"/>\n' + body,
-        )
-        check = median_time(lambda: check_tree(big, {}, LaunchLoader(), PackageIndex()), repeat)
-        entities = check_tree(big, {}, LaunchLoader(), PackageIndex()).entity_count
-        print(
-            f"parse + check {entities} entities: {check * 1000:.1f} ms "
-            "(ros2 launch measured 1600 ms for 1000)"
-        )
+        for big in big_files(directory):
+            check = median_time(
+                lambda big=big: check_tree(big, {}, LaunchLoader(), PackageIndex()), repeat
+            )
+            entities = check_tree(big, {}, LaunchLoader(), PackageIndex()).entity_count
+            ros = ""
+            if options.ros_python:
+                ros_t = ros_parse_time(options.ros_python, big, repeat)
+                ros = (
+                    f"; ros2 launch in this run: {ros_t * 1000:.0f} ms, {ros_t / check:.0f}x"
+                    if isinstance(ros_t, float)
+                    else f"; ros2 launch failed: {ros_t}"
+                )
+            print(
+                f"parse + check {entities} entities, {big.suffix[1:].upper()}: "
+                f"{check * 1000:.1f} ms (ros2 launch measured 1600 ms for 1000 XML{ros})"
+            )
         python_file_times(directory, repeat, options.ros_python, env)
         hundred = write(directory, "sleep100.launch.xml", '<executable cmd="sleep 0.5"/>\n' * 100)
         print(f"launcher peak RSS with 100 children: {peak_rss_mb(hundred, env):.1f} MB")

@@ -1,5 +1,5 @@
 """``python -m launchkit`` is the ``launchkit`` command."""
 
-from launchkit.cli import main
+from launchkit.cli import console_main
 
-raise SystemExit(main())
+console_main()

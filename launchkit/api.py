@@ -7,15 +7,21 @@ import sys
 import sysconfig
 from collections.abc import Mapping
 from pathlib import Path
-from typing import IO
+from typing import IO, TYPE_CHECKING
 
-from launchkit.checks import CheckedTree, check_tree, undeclared_arguments
+from launchkit.checks import CheckedTree, check_tree, static_path, undeclared_arguments
+from launchkit.description.actions import DeclareArgument, Include
+from launchkit.description.actions.base import Action
 from launchkit.description.launch_context import LaunchContext, Runner
+from launchkit.description.launch_description import LaunchDescription, walk
 from launchkit.description.ros_link import RosLink
-from launchkit.errors import PackageNotFoundError
+from launchkit.errors import LaunchkitError, PackageNotFoundError
 from launchkit.frontend.launch_loader import LaunchLoader
 from launchkit.packages import PackageIndex
 from launchkit.runtime.hooks import SupervisorHooks
+
+if TYPE_CHECKING:
+    from launchkit.runtime.recorder import Recorded
 
 
 def resolve_launch_file(target: str, filename: str | None, packages: PackageIndex) -> Path:
@@ -70,7 +76,9 @@ def _context(
         if log_dir is None:
             from launchkit.runtime.logdir import create_run_dir
 
-            log_dir = create_run_dir(os.environ)
+            run = create_run_dir(os.environ)
+            run.release()  # nothing runs (--print): later runs may prune it
+            log_dir = run.path
         return log_dir
 
     return LaunchContext(
@@ -95,11 +103,15 @@ def launch_environment(environ: Mapping[str, str]) -> dict[str, str]:
     return environment
 
 
-def describe(
+def dry_run(
     path: Path, arguments: Mapping[str, str] | None = None, *, bridge: bool = False
-) -> str:
-    """What running ``path`` would do (processes with command lines, env changes, timers)."""
-    from launchkit.runtime.recorder import Recorder, render
+) -> tuple[CheckedTree, list[Recorded]]:
+    """Check ``path``, then evaluate it as running it would, starting nothing: every included
+    file is loaded, every package and executable looked up, every ``$(command)`` run. What it
+    would start is recorded (timers' actions at once); errors are raised as ``run`` raises
+    them. ``bridge`` adds ``launchkit bridge`` as ``run(bridge=True)`` does."""
+    from launchkit.runtime.recorder import Recorder
+    from launchkit.runtime.signals import raising
 
     arguments = dict(arguments or {})
     packages, loader = PackageIndex(), LaunchLoader()
@@ -112,22 +124,54 @@ def describe(
     context = _context(recorder, arguments, packages, loader, None)
     recorder.context = context
     try:
-        with context.in_file(tree.top.path):
+        with raising(), context.in_file(tree.top.path):
             for action in tree.top.actions:
                 action.visit(context)
-        return render(recorder.items)
+        return tree, recorder.items
     finally:
         context.cleanup()
 
 
+def describe(
+    path: Path, arguments: Mapping[str, str] | None = None, *, bridge: bool = False
+) -> str:
+    """What running ``path`` would do (processes with command lines, env changes, timers)."""
+    from launchkit.runtime.recorder import render
+
+    return render(dry_run(path, arguments, bridge=bridge)[1])
+
+
+def check_report(path: Path, arguments: Mapping[str, str] | None = None) -> str:
+    """``launchkit check``: check ``path`` and evaluate it as ``--print`` does (packages,
+    included files, commands), then say what was checked and what was not."""
+    from launchkit.runtime.recorder import count
+
+    tree, items = dry_run(path, arguments)
+    processes, timers = count(items)
+    report = (
+        f"{path}: ok ({len(tree.files)} file(s), {tree.entity_count} entities; "
+        f"with these arguments it starts {processes} process(es)"
+        + (f" and {timers} timer(s)" if timers else "")
+        + ")"
+    )
+    if any(action.condition is not None for d in tree.files.values() for action in walk(d.actions)):
+        report += (
+            "\nnot checked: what an if/unless that is false with these arguments would "
+            "include or start (pass other arguments to check it)"
+        )
+    return report
+
+
 def show_arguments(path: Path) -> str:
-    """The arguments ``path`` declares, with defaults, descriptions and choices."""
-    description = check_tree(path, None, LaunchLoader(), PackageIndex()).top
+    """The arguments ``path`` and the files it includes declare (first declaration wins, as
+    ``ros2 launch --show-args``), with defaults, descriptions and choices."""
+    packages = PackageIndex()
+    tree = check_tree(path, None, LaunchLoader(), packages)
     lines = ["Arguments (pass arguments as '<name>:=<value>'):"]
-    declared = description.declared_arguments()
+    declared = _declared_arguments(tree, packages)
     if not declared:
         lines.append("\n  No arguments.")
-    for arg in declared:
+    for arg, conditional in declared:
         lines.append(f"\n    '{arg.name}':")
         lines.append(f"        {arg.description or 'no description given'}")
         if arg.choices:
@@ -136,9 +180,36 @@ def show_arguments(path: Path) -> str:
         lines.append(
             f"        (default: {default!r})" if default is not None else "        (required)"
         )
-        if arg.condition is not None:
+        if conditional:
             lines.append("        (declared conditionally)")
     return "\n".join(lines)
+
+
+def _declared_arguments(
+    tree: CheckedTree, packages: PackageIndex
+) -> list[tuple[DeclareArgument, bool]]:
+    """Every ``<arg>`` of the top file and of the files it includes statically, in document
+    order (an included file's where its ``<include>`` is), each with whether an ``if`` or
+    ``unless`` on it or around it decides whether it is declared at all."""
+    found: dict[str, tuple[DeclareArgument, bool]] = {}
+
+    def visit(description: LaunchDescription, actions: list[Action], conditional: bool) -> None:
+        for action in actions:
+            guarded = conditional or action.condition is not None
+            if isinstance(action, DeclareArgument):
+                found.setdefault(action.name, (action, guarded))
+            elif isinstance(action, Include):
+                included = static_path(action, description.path, packages)
+                child = tree.files.get(included) if included is not None else None
+                if child is not None and child.path not in visiting:
+                    visiting.add(child.path)
+                    visit(child, child.actions, guarded)
+                    visiting.discard(child.path)
+            visit(description, list(action.children()), guarded)
+
+    visiting = {tree.top.path}
+    visit(tree.top, tree.top.actions, False)
+    return list(found.values())
 
 
 def run(
@@ -156,40 +227,47 @@ def run(
     ``hooks`` observes the launch as it runs (the test plugin's event channel uses it).
     ``bridge`` also runs ``launchkit bridge`` (to a ROS 2 DDS graph) under supervision.
     """
-    from launchkit.runtime.logdir import create_run_dir
+    from launchkit.runtime.logdir import LogLimits, create_run_dir
     from launchkit.runtime.network import NodeNetwork
     from launchkit.runtime.output import Output
     from launchkit.runtime.supervisor import Supervisor
 
     arguments = dict(arguments or {})
     packages, loader = PackageIndex(), LaunchLoader()
-    tree = check_tree(path, arguments, loader, packages)
-    if bridge:
-        from launchkit.bridge.launch import add_bridge
-
-        add_bridge(tree.top, arguments)
+    limits = LogLimits.from_environment(os.environ)
+    # As ros2 launch: the run folder exists (and `latest` points at it) even when the file is
+    # rejected; its launch.log then holds the error.
+    run_dir = create_run_dir(os.environ, limits.keep_runs)
     output = Output(stream or sys.stdout)
-    run_dir = create_run_dir(os.environ)
-    output.open_logs(run_dir)
-    output.launch_line("INFO", "launch", f"All log files can be found below {run_dir}")
-    for name in undeclared_arguments(tree, arguments):
-        output.launch_line(
-            "WARNING",
-            "launch",
-            f"argument '{name}' is not declared or used by "
-            f"{path.name} (or the files it includes statically)",
-        )
-    network = NodeNetwork(router)
-    supervisor = Supervisor(output, network=network, hooks=hooks)
-    context = _context(supervisor, arguments, packages, loader, run_dir)
-
-    def ros_link() -> RosLink:
-        from launchkit.ros_adapter import RosAdapter
-
-        return RosAdapter(lambda: network.ensure(supervisor), context.post)
-
-    context.ros_factory = ros_link
+    output.open_logs(run_dir.path, limits)
     try:
+        tree = check_tree(path, arguments, loader, packages)
+        if bridge:
+            from launchkit.bridge.launch import add_bridge
+
+            add_bridge(tree.top, arguments)
+        output.launch_line("INFO", "launch", f"All log files can be found below {run_dir.path}")
+        for name in undeclared_arguments(tree, arguments):
+            output.launch_line(
+                "WARNING",
+                "launch",
+                f"argument '{name}' is not declared or used by "
+                f"{path.name} (or the files it includes statically)",
+            )
+        network = NodeNetwork(router)
+        supervisor = Supervisor(output, network=network, hooks=hooks)
+        context = _context(supervisor, arguments, packages, loader, run_dir.path)
+
+        def ros_link() -> RosLink:
+            from launchkit.ros_adapter import RosAdapter
+
+            return RosAdapter(lambda: network.ensure(supervisor), context.post)
+
+        context.ros_factory = ros_link
         return supervisor.run(tree.top, context)
+    except LaunchkitError as error:
+        output.launch_line("ERROR", "launch", error.format(), screen=False)
+        raise
     finally:
         output.close()
+        run_dir.release()

@@ -24,7 +24,13 @@ from launchkit.description.substitutions import (
     Var,
 )
 from launchkit.description.substitutions.base import literal
-from launchkit.errors import LaunchArgumentError, LaunchFileError, PackageNotFoundError
+from launchkit.errors import (
+    LaunchArgumentError,
+    LaunchFileError,
+    LaunchkitError,
+    Location,
+    PackageNotFoundError,
+)
 from launchkit.frontend.launch_loader import LaunchLoader
 from launchkit.packages import PackageIndex
 
@@ -62,25 +68,34 @@ def check_tree(
     """Parse ``path`` and its static includes and check ``arguments`` (unless None, as for
     ``--show-args``); raise on the first error."""
     tree = CheckedTree(loader.load(path))
+    chains: dict[Path, list[Location]] = {tree.top.path: []}  # the includes that led to a file
     pending = [tree.top]
     while pending:
         description = pending.pop()
+        chain = chains[description.path]
         for action in walk(description.actions):
             if not isinstance(action, Include):
                 continue
             included = static_path(action, description.path, packages)
             if included is None or included in tree.files:
                 continue
-            if not included.is_file():
-                if _always_runs(action, description):
-                    raise LaunchFileError(
-                        f"included launch file '{included}' does not exist",
-                        action.location,
-                        expected="a path to a launch file",
-                    )
-                continue  # conditional: reported if and when the include runs
-            child = loader.load(included, action.location)
+            try:
+                if not included.is_file():
+                    if _always_runs(action, description):
+                        raise LaunchFileError(
+                            f"included launch file '{included}' does not exist",
+                            action.location,
+                            expected="a path to a launch file",
+                        )
+                    continue  # conditional: reported if and when the include runs
+                child = loader.load(included, action.location, action.syntax)
+            except LaunchkitError as error:
+                for place in reversed([*chain, action.location]):
+                    if place is not None:
+                        error.included_from(place)
+                raise
             tree.files[included] = child
+            chains[child.path] = [*chain, *([action.location] if action.location else [])]
             pending.append(child)
     if arguments is not None:
         check_arguments(tree.top, arguments)

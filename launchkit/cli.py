@@ -1,18 +1,23 @@
 """The ``launchkit`` command line: argument parsing only; the work is in :mod:`launchkit.api`.
 
-Exit status: 0 when all went well, 2 for a user mistake (reported as one
-``FILE:LINE:COL: error: ...`` line before anything starts), 1 for a failure while running
-(or the exit code of an ``on_exit="shutdown"`` process that failed).
+Exit status: 0 when all went well (a launch stopped with Ctrl-C included, as ``ros2 launch``),
+2 for a user mistake (reported as one ``FILE:LINE:COL: error: ...`` line before anything
+starts), 1 for a failure while running (or the exit code of an ``on_exit="shutdown"`` process
+that failed), 128 + N for a launch stopped by SIGTERM, SIGHUP or SIGQUIT, or for any command
+a signal interrupted (130 for Ctrl-C while parsing or ``--print``).
 """
 
 from __future__ import annotations
 
 import argparse
 import os
+import signal
 import sys
 from pathlib import Path
-from typing import TYPE_CHECKING
+from typing import TYPE_CHECKING, NoReturn
 
+from launchkit._argparse import CommandParser
+from launchkit._exit import exit_promptly
 from launchkit.errors import LaunchkitError, UserError
 
 if TYPE_CHECKING:
@@ -21,8 +26,8 @@ if TYPE_CHECKING:
 ROS_COMMANDS = ("topic", "node", "service", "param", "interface", "router")
 
 
-def _launch_parser(prog: str, description: str) -> argparse.ArgumentParser:
-    parser = argparse.ArgumentParser(prog=prog, description=description)
+def _launch_parser(prog: str, description: str) -> CommandParser:
+    parser = CommandParser(prog=prog, description=description)
     parser.add_argument(
         "items",
         nargs="+",
@@ -36,7 +41,7 @@ def _launch_parser(prog: str, description: str) -> argparse.ArgumentParser:
 
 def build_parser() -> argparse.ArgumentParser:
     """The top-level parser (the ROS commands are parsed by ``launchkit.ros_cli.main``)."""
-    parser = argparse.ArgumentParser(
+    parser = CommandParser(
         prog="launchkit", description="Run ROS 2 XML launch files without a ROS install."
     )
     commands = parser.add_subparsers(dest="command", metavar="COMMAND")
@@ -75,9 +80,9 @@ def build_parser() -> argparse.ArgumentParser:
     run.add_argument("--events-fd", type=int, help=argparse.SUPPRESS)
     commands.add_parser(
         "check",
-        help="validate a launch file and run nothing",
+        help="check a launch file as --print would (packages, includes, commands); run nothing",
         add_help=False,
-        parents=[_launch_parser("launchkit check", "Validate a launch file.")],
+        parents=[_launch_parser("launchkit check", "Check a launch file as --print would.")],
     )
     pkg = commands.add_parser("pkg", help="packages: list, prefix, executables")
     pkg_commands = pkg.add_subparsers(dest="pkg_command", metavar="SUBCOMMAND", required=True)
@@ -119,6 +124,13 @@ def main(argv: list[str] | None = None) -> int:
     return _guarded(lambda: _dispatch(args), debug=getattr(args, "debug", False))
 
 
+def console_main() -> NoReturn:
+    """The ``launchkit`` console script: :func:`main`, then a prompt exit with its status (the
+    interpreter's own teardown would delay the exit by up to seconds on a busy machine; see
+    :mod:`launchkit._exit`)."""
+    exit_promptly(main())
+
+
 def _guarded(action: object, debug: bool) -> int:
     try:
         return action()  # type: ignore[operator,no-any-return]
@@ -129,8 +141,8 @@ def _guarded(action: object, debug: bool) -> int:
             traceback.print_exc()
         print(error.format(), file=sys.stderr)
         return error.exit_status
-    except KeyboardInterrupt:
-        return 130
+    except KeyboardInterrupt as interrupt:  # launchkit's Interrupted says which signal
+        return 128 + getattr(interrupt, "signum", signal.SIGINT)
 
 
 def _ros_command(command: str, argv: list[str]) -> int:
@@ -190,16 +202,19 @@ def _launch(args: argparse.Namespace, hooks: SupervisorHooks | None = None) -> i
     arguments = parse_launch_arguments(args.items[len(files) :])
     packages = PackageIndex()
     path = api.resolve_launch_file(files[0], files[1] if len(files) == 2 else None, packages)
-    if args.command == "check":
-        tree = api.check(path, arguments, packages=packages)
-        print(f"{path}: ok ({len(tree.files)} file(s), {tree.entity_count} entities)")
-        return 0
-    if args.show_args:
-        print(api.show_arguments(path))
-        return 0
-    if args.print_description:
-        print(api.describe(path, arguments, bridge=args.bridge))
-        return 0
+    try:
+        if args.command == "check":
+            print(api.check_report(path, arguments))
+            return 0
+        if args.show_args:
+            print(api.show_arguments(path))
+            return 0
+        if args.print_description:
+            print(api.describe(path, arguments, bridge=args.bridge))
+            return 0
+    except LaunchkitError as error:
+        error.exit_status = 2  # as for `run`: found before anything would start
+        raise
     if args.show_all_subprocesses_output:
         os.environ["OVERRIDE_LAUNCH_PROCESS_OUTPUT"] = "both"
     try:
@@ -239,7 +254,7 @@ def _exec(args: argparse.Namespace, packages: object) -> int:
     return 0  # not reached
 
 
-__all__ = ["main"]
+__all__ = ["console_main", "main"]
 
 
 if __name__ == "__main__":

@@ -11,6 +11,8 @@
 
 Each error carries an optional :class:`Location`; :meth:`LaunchkitError.format` renders the
 one-line ``FILE:LINE:COL: error: WHAT (expected ...)`` form, plus a hint line when there is one.
+An error inside an included file also carries the ``<include>`` locations that led to it,
+outermost first: ``a.launch.xml:12:3 -> b.launch.py:40: error: ...``.
 """
 
 from __future__ import annotations
@@ -52,12 +54,15 @@ class LaunchkitError(Exception):
         *,
         expected: str | None = None,
         hint: str | None = None,
+        quoted: list[str] | None = None,
     ) -> None:
         super().__init__(message)
         self.message = message
         self.location = location
         self.expected = expected
         self.hint = hint
+        self.quoted = quoted or []  # lines quoted under the message (a program's last words)
+        self.include_chain: list[Location] = []  # the <include>s that led to the location
 
     def with_location(self, location: Location) -> LaunchkitError:
         """Attach ``location`` unless the error already knows a more precise one."""
@@ -65,13 +70,24 @@ class LaunchkitError(Exception):
             self.location = location
         return self
 
+    def included_from(self, include: Location) -> LaunchkitError:
+        """Record that the error happened in a file included at ``include`` (call from the
+        innermost include outwards). An error located at the include itself gets no link."""
+        if include != self.location and include not in self.include_chain:
+            self.include_chain.insert(0, include)
+        return self
+
     def format(self) -> str:
-        """The user-facing text: ``FILE:LINE:COL: error: WHAT (expected ...)`` [+ hint]."""
+        """The user-facing text: ``[INCLUDE -> ...] FILE:LINE:COL: error: WHAT (expected ...)``
+        [+ quoted lines] [+ hint]."""
         text = f"error: {self.message}"
         if self.expected:
             text += f" (expected {self.expected})"
         if self.location is not None:
-            text = f"{self.location}: {text}"
+            where = " -> ".join(str(place) for place in [*self.include_chain, self.location])
+            text = f"{where}: {text}"
+        for line in self.quoted:
+            text += f"\n  | {line}"
         if self.hint:
             text += f"\n  hint: {self.hint}"
         return text

@@ -175,6 +175,13 @@ class PackageIndex:
         for candidate in _launch_candidates(share, filename):
             if candidate.is_file():
                 return candidate
+        if filename in self.executables(package):
+            raise PackageNotFoundError(
+                f"'{filename}' is an executable of package '{package}', not a launch file",
+                expected="PKG FILE with a launch file of the package",
+                hint=f"run one executable with `launchkit exec {package} {filename}` "
+                "(what `ros2 run` does)",
+            )
         raise PackageNotFoundError(
             f"launch file '{filename}' not found in package '{package}'",
             expected="a file in "

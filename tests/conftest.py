@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import signal
 from collections.abc import Callable, Mapping
 from dataclasses import dataclass, field
 from pathlib import Path
@@ -48,6 +49,14 @@ def _flatten(items: list[Recorded], into: Evaluated) -> None:
 
 
 EvaluateXml = Callable[..., Evaluated]
+
+
+def pytest_configure(config: pytest.Config) -> None:
+    """Give the processes the tests start the usual Ctrl-C: a suite started as a background job
+    of a non-interactive shell (``python -m pytest ... &``) inherits SIGINT ignored, and so would
+    every command a test stops with SIGINT (a Python program then never sees KeyboardInterrupt)."""
+    if signal.getsignal(signal.SIGINT) == signal.SIG_IGN:
+        signal.signal(signal.SIGINT, signal.default_int_handler)
 
 
 @pytest.fixture

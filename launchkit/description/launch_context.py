@@ -37,7 +37,7 @@ class Scope:
 
     configurations: dict[str, str] = field(default_factory=dict)
     environment: dict[str, str] = field(default_factory=dict)
-    #: ``SetParameter`` (name, value text) and ``SetParametersFromFile`` (a path), in order
+    # (name, value) from <set_parameter>, a file path from <set_parameters_from_file>, in order
     global_params: list[tuple[str, str] | str] = field(default_factory=list)
     remaps: list[tuple[str, str]] = field(default_factory=list)
 
@@ -126,6 +126,17 @@ class Runner(Protocol):
         processes whose action ``matcher`` accepts."""
 
 
+class ChildGroups(Protocol):
+    """Who must know the process groups that evaluation starts (a ``$(command)``), so that
+    they die with the launcher however it ends (the runtime's orphan guard)."""
+
+    def watch(self, pgid: int) -> None:
+        """``pgid`` exists now."""
+
+    def forget(self, pgid: int) -> None:
+        """``pgid`` is gone (its id may be reused)."""
+
+
 @dataclass(frozen=True)
 class Snapshot:
     """A scope and file captured for later (timers run their actions in it)."""
@@ -134,8 +145,9 @@ class Snapshot:
     current_file: Path | None
 
 
-#: Loads the launch file at a path (the location is the ``<include>`` that asks, for errors).
-Loader = Callable[[Path, "Location | None"], LoadedFile]
+#: Loads the launch file at a path (the location is the ``<include>`` that asks, for errors;
+#: the syntax is None to go by the file's suffix, or the one the include asks for).
+Loader = Callable[[Path, "Location | None", "str | None"], LoadedFile]
 
 
 class LaunchContext:
@@ -179,6 +191,11 @@ class LaunchContext:
         #: Makes the launcher's ROS node on first use (None: no ROS, as for ``--print``).
         self.ros_factory: Callable[[], RosLink] | None = None
         self._ros: RosLink | None = None
+        #: set by the supervisor: told about every ``$(command)``'s process group
+        self.child_groups: ChildGroups | None = None
+        #: set by the supervisor: the private folder generated files go in (removed even when
+        #: the launcher is killed); None: the system's temporary folder
+        self.scratch_root: Path | None = None
 
     @property
     def configurations(self) -> dict[str, str]:
@@ -198,7 +215,7 @@ class LaunchContext:
     def write_scratch_file(self, prefix: str, suffix: str, text: str) -> Path:
         """Write a generated file (a node's parameters) that lives as long as the run."""
         if self._scratch is None:
-            self._scratch = Path(tempfile.mkdtemp(prefix="launchkit-"))
+            self._scratch = Path(tempfile.mkdtemp(prefix="launchkit-", dir=self.scratch_root))
         handle, name = tempfile.mkstemp(prefix=prefix, suffix=suffix, dir=self._scratch)
         with os.fdopen(handle, "w") as stream:
             stream.write(text)

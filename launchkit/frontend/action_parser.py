@@ -50,7 +50,7 @@ class ActionParser:
         parse = self._parsers.get(entity.tag)
         if parse is None:
             raise entity.error(
-                f"unknown tag <{entity.tag}>",
+                f"unknown tag {entity.label()}",
                 expected="one of: " + ", ".join(self.tags()),
                 hint=_ROS1_HINTS.get(entity.tag),
             )
@@ -67,7 +67,7 @@ def parse_condition(entity: Entity) -> Condition | None:
     when, unless = entity.value("if"), entity.value("unless")
     if when is not None and unless is not None:
         raise entity.error(
-            f"<{entity.tag}> has both 'if' and 'unless'",
+            f"{entity.label()} has both 'if' and 'unless'",
             expected="at most one of them",
             attr="unless",
         )

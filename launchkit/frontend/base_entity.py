@@ -1,10 +1,15 @@
 """What a tag parser sees of one element of a launch file, in any syntax.
 
-A frontend (XML in ``frontend/xml``, YAML next) subclasses :class:`Entity` with how its syntax
-stores a tag name, attributes, children and positions; the tag parsers in ``frontend/tags`` use
-only what is defined here, so one parser serves every syntax. Attributes are read through
-:meth:`Entity.raw` (which marks them read), and :meth:`Entity.assert_fully_read` then rejects
-any attribute no parser asked for, naming the ones it would have read, as ROS does.
+A frontend (XML in ``frontend/xml``, YAML in ``frontend/yaml``) subclasses :class:`Entity` with
+how its syntax stores a tag name, attributes, children and positions; the tag parsers in
+``frontend/tags`` use only what is defined here, so one parser serves every syntax. Attributes are
+read through :meth:`Entity.raw` (which marks them read), and :meth:`Entity.assert_fully_read`
+then rejects any attribute no parser asked for, naming the ones it would have read, as ROS does.
+
+XML attributes are always text. YAML values have types of their own, and ROS's YAML reader
+checks them per attribute (a string where text is read, a float for ``period``, a boolean for
+``scoped``): the parsers say which native type an attribute may also be given as (``native``),
+and a syntax with types turns such a value into the text the parsers read (:meth:`typed_text`).
 """
 
 from __future__ import annotations
@@ -23,11 +28,19 @@ _CHECKS = {
     "int": "an integer",
     "ufloat": "a number >= 0",
 }
+#: The native type a typed syntax may give a checked attribute as.
+_NATIVE = {"bool": "bool", "float": "float", "int": "int", "ufloat": "float"}
 
 
 class Entity(ABC):
     """One element of a launch file: its tag, its attributes (parsed into values on first
     read, with locations for errors) and its child elements."""
+
+    #: What errors call an attribute in this syntax.
+    ATTRIBUTE = "attribute"
+    #: Whether list values are text split by a sibling ``NAME-sep`` attribute (XML); a syntax
+    #: with native lists (YAML) has no such attribute.
+    SPLITS_LISTS = True
 
     def __init__(self, tag: str) -> None:
         self.tag = tag
@@ -56,6 +69,32 @@ class Entity(ABC):
     def children(self) -> list[Entity]:
         """The child elements, in order."""
 
+    # -- what a syntax may change --------------------------------------------------------------
+
+    def label(self, tag: str | None = None) -> str:
+        """How errors name tag ``tag`` (this entity's by default): ``<tag>`` in XML."""
+        return f"<{tag or self.tag}>"
+
+    def example(self, name: str) -> str:
+        """How attribute ``name`` is written, for "expected" texts."""
+        return f'{name}="..."'
+
+    def key_location(self, name: str) -> Location:
+        """Where attribute ``name`` is written (for an unknown attribute)."""
+        return self.attribute_location(name)
+
+    def typed_text(self, name: str, native: str) -> str | None:
+        """Attribute ``name`` as text when it may also be given as a value of type ``native``
+        (bool, float or int); a syntax whose values are all text just returns the text."""
+        return self.attribute_text(name)
+
+    def param_value(self, name: str, kind: str | None) -> tuple[Value, str | None] | None:
+        """A ``<param>`` value and the type it is to be read as (``kind``: the ``type``
+        attribute, None for YAML's rules), or None when absent. Text syntaxes read every value
+        by ``kind``; a typed syntax may keep a value's own type."""
+        value = self.value(name)
+        return None if value is None else (value, kind)
+
     # -- reading attributes (the same for every syntax) ----------------------------------------
 
     def error(
@@ -74,14 +113,17 @@ class Entity(ABC):
         """Whether attribute ``name`` is present."""
         return self.attribute_text(name) is not None
 
-    def raw(self, name: str) -> str | None:
-        """Attribute text as written (marks it read)."""
+    def raw(self, name: str, native: str | None = None) -> str | None:
+        """Attribute text as written (marks it read); ``native``: the type (bool, float, int)
+        a typed syntax may give it as instead of text."""
         self._read.add(name)
-        return self.attribute_text(name)
+        if native is None:
+            return self.attribute_text(name)
+        return self.typed_text(name, native)
 
-    def value(self, name: str) -> Value | None:
+    def value(self, name: str, native: str | None = None) -> Value | None:
         """Attribute parsed into text and substitutions, or None when absent."""
-        text = self.raw(name)
+        text = self.raw(name, native)
         if text is None:
             return None
         return parse_value(text, self.attribute_location(name))
@@ -91,20 +133,20 @@ class Entity(ABC):
         value = self.value(name)
         if value is None:
             raise self.error(
-                f"<{self.tag}> is missing attribute '{name}'",
-                expected=what or f'{name}="..."',
+                f"{self.label()} is missing {self.ATTRIBUTE} '{name}'",
+                expected=what or self.example(name),
             )
         return value
 
-    def plain(self, name: str) -> str | None:
+    def plain(self, name: str, native: str | None = None) -> str | None:
         """Attribute that takes no substitutions (``\\`` escapes are removed)."""
-        value = self.value(name)
+        value = self.value(name, native)
         if value is None:
             return None
         text = literal(value)
         if text is None:
             raise self.error(
-                f"attribute '{name}' of <{self.tag}> cannot contain substitutions",
+                f"{self.ATTRIBUTE} '{name}' of {self.label()} cannot contain substitutions",
                 expected="plain text",
                 attr=name,
             )
@@ -112,20 +154,25 @@ class Entity(ABC):
 
     def static_bool(self, name: str, default: bool) -> bool:
         """A boolean attribute that must be written literally."""
-        text = self.plain(name)
+        text = self.plain(name, "bool")
         if text is None:
             return default
         value = bool_value(text)
         if value is None:
             raise self.error(
-                f"attribute '{name}' of <{self.tag}> is {text!r}", expected=BOOL_EXPECTED, attr=name
+                f"{self.ATTRIBUTE} '{name}' of {self.label()} is {text!r}",
+                expected=BOOL_EXPECTED,
+                attr=name,
             )
         return value
 
-    def checked(self, name: str, check: str) -> Value | None:
+    def checked(self, name: str, check: str, *, typed: bool = True) -> Value | None:
         """An attribute that may hold substitutions; when it is literal, its text is checked
-        now (``check``: bool, float, int, ufloat) so a typo fails before anything starts."""
-        value = self.value(name)
+        now (``check``: bool, float, int, ufloat) so a typo fails before anything starts.
+        ``typed``: whether a typed syntax may give it as a value of that type (ROS reads a few
+        such attributes, ``respawn`` for one, as text only)."""
+        native = _NATIVE[check] if typed else None
+        value = self.value(name, native)
         text = None if value is None else literal(value)
         if text is None:
             return value
@@ -140,7 +187,7 @@ class Entity(ABC):
                 ok = False
         if not ok:
             raise self.error(
-                f"attribute '{name}' of <{self.tag}> is {text!r}",
+                f"{self.ATTRIBUTE} '{name}' of {self.label()} is {text!r}",
                 expected=_CHECKS[check],
                 attr=name,
             )
@@ -152,7 +199,7 @@ class Entity(ABC):
         text = None if value is None else literal(value)
         if text is not None and text not in choices:
             raise self.error(
-                f"attribute '{name}' of <{self.tag}> is {text!r}",
+                f"{self.ATTRIBUTE} '{name}' of {self.label()} is {text!r}",
                 expected="one of " + ", ".join(choices),
                 attr=name,
             )
@@ -163,9 +210,9 @@ class Entity(ABC):
         for name in self.attribute_names():
             if name not in self._read:
                 allowed = sorted(self._read)
-                expected = ", ".join(allowed) if allowed else "no attributes"
-                raise self.error(
-                    f"unknown attribute '{name}' on <{self.tag}>",
+                expected = ", ".join(allowed) if allowed else f"no {self.ATTRIBUTE}s"
+                raise LaunchFileError(
+                    f"unknown {self.ATTRIBUTE} '{name}' on {self.label()}",
+                    self.key_location(name),
                     expected=f"one of: {expected}" if allowed else expected,
-                    attr=name,
                 )

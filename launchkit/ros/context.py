@@ -178,9 +178,16 @@ def install_signal_handlers() -> None:
     _signals_installed = True
 
 
-def _at_exit() -> None:
+def shutdown_all() -> None:
+    """Shut the default context down and close every Zenoh session still open (what the
+    process does at exit; ``launchkit._exit`` calls it before skipping the interpreter's
+    teardown)."""
     default_context.shutdown()
     close_all()
+
+
+def _at_exit() -> None:
+    shutdown_all()
 
 
 # zenoh's callback threads are not daemons, and Python joins such threads *before* it runs

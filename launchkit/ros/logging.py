@@ -61,6 +61,28 @@ def _stream() -> TextIO:
     return sys.stdout if os.environ.get("RCUTILS_LOGGING_USE_STDOUT") == "1" else sys.stderr
 
 
+# rcutils' colours: DEBUG green, INFO plain, WARN yellow, ERROR and FATAL red (whole line)
+_COLOURS = {
+    LoggingSeverity.DEBUG: "\033[32m",
+    LoggingSeverity.WARN: "\033[33m",
+    LoggingSeverity.ERROR: "\033[31m",
+    LoggingSeverity.FATAL: "\033[31m",
+}
+_RESET = "\033[0m"
+
+
+def colourize(stream: TextIO) -> bool:
+    """Whether log lines on ``stream`` get colours: ``RCUTILS_COLORIZED_OUTPUT=1`` or ``0``
+    says so; unset, only on a terminal (as rcutils decides)."""
+    setting = os.environ.get("RCUTILS_COLORIZED_OUTPUT", "").strip()
+    if setting in ("0", "1"):
+        return setting == "1"
+    try:
+        return stream.isatty()
+    except (AttributeError, ValueError):
+        return False
+
+
 class RcutilsLogger:
     """A named logger: ``debug/info/warn/error/fatal(msg, once=, throttle_duration_sec=, ...)``."""
 
@@ -114,8 +136,12 @@ class RcutilsLogger:
                 return False
             self._last[site] = now
         stamp = time.time()
-        line = f"[{value.name}] [{stamp:.9f}] [{self.name}]: {message}\n"
+        line = f"[{value.name}] [{stamp:.9f}] [{self.name}]: {message}"
         stream = _stream()
+        colour = _COLOURS.get(value)
+        if colour is not None and colourize(stream):
+            line = f"{colour}{line}{_RESET}"
+        line += "\n"
         with _write_lock:
             stream.write(line)
             stream.flush()

@@ -61,21 +61,12 @@ class ParameterStore:
             value = self.overrides[name]
         declared_type = ParameterType.from_value(default) if default is not None else None
         param = Parameter(name, value=value)
-        if (
-            declared_type is not None
-            and param.type_ != declared_type
-            and not (declared_type == ParameterType.DOUBLE and param.type_ == ParameterType.INTEGER)
-            and not (
-                declared_type == ParameterType.DOUBLE_ARRAY
-                and param.type_ == ParameterType.INTEGER_ARRAY
-            )
-        ):
-            raise InvalidParameterTypeException(
-                f"parameter '{name}' was declared as {declared_type.name} but the value given "
-                f"to the node is {param.type_.name} ({value!r})"
-            )
         if declared_type is not None and param.type_ != declared_type:
-            param = Parameter(name, declared_type, value)
+            # as rclpy: no conversion, not even of an integer to a double
+            raise InvalidParameterTypeException(
+                f"Trying to set parameter '{name}' to '{value}' of type "
+                f"'{param.type_.name}', expecting type '{declared_type.name}': {name}"
+            )
         result = self._check([param])
         if not result.successful:
             raise InvalidParameterTypeException(f"parameter '{name}' rejected: {result.reason}")
@@ -109,7 +100,9 @@ class ParameterStore:
                 and param.type_ != ParameterType.NOT_SET
             ):
                 return SetParametersResult(
-                    False, f"Wrong parameter type, expected 'Type.{declared.name}'"
+                    False,
+                    f"Wrong parameter type, expected 'Type.{declared.name}' "
+                    f"got 'Type.{param.type_.name}'",
                 )
         result = self._check(params)
         if not result.successful:

@@ -91,6 +91,7 @@ class Service(_ServiceEntity):
         self.raw = raw
         self._pending: deque[tuple[zenoh.Query, bytes, bytes | None]] = deque()
         self._pending_lock = threading.Lock()
+        self._scheduled = False  # a _handle_next waits in the node's work queue
         self._queryable = node.context.session.declare_queryable(
             self.key, self._on_query, complete=True
         )
@@ -114,13 +115,21 @@ class Service(_ServiceEntity):
                 )
                 oldest.drop()  # type: ignore[no-untyped-call]
             self._pending.append(item)
+            if self._scheduled:
+                return
+            self._scheduled = True
         self.node.post((self._handle_next, ()))
 
     def _handle_next(self) -> None:
+        # one item in the node's work queue at a time, however many requests wait
         with self._pending_lock:
             if not self._pending:
-                return  # discarded by the queue depth
+                self._scheduled = False
+                return
             query, payload, attachment = self._pending.popleft()
+            self._scheduled = bool(self._pending)
+        if self._scheduled:
+            self.node.post((self._handle_next, ()))
         request_info = decode_attachment(attachment)
         sequence = request_info.sequence if request_info else 0
         gid = request_info.gid if request_info else self.gid

@@ -5,6 +5,7 @@ from __future__ import annotations
 import inspect
 import threading
 import time
+from collections import deque
 from collections.abc import Callable
 from typing import TYPE_CHECKING, Any, TypedDict
 
@@ -193,6 +194,12 @@ class Subscription(_Entity):
 
     As in rclpy, a callback taking two arguments gets ``(msg, message_info)``
     (:class:`MessageInfo`); with ``raw=True`` the message is its CDR ``bytes``, never decoded.
+
+    As rmw_zenoh's, the subscription keeps its own queue of received messages: at most
+    ``depth`` of them for KEEP_LAST (the oldest is dropped for a new one: a slow callback sees
+    the latest messages, and memory stays bounded whatever the publishers send), all of them
+    for KEEP_ALL. The node's work queue holds at most one "take the next message" item per
+    subscription, so other callbacks get their turn between two messages.
     """
 
     KIND = "MS"
@@ -211,6 +218,11 @@ class Subscription(_Entity):
         self.raw = raw
         self._with_info = _wants_message_info(callback)
         self._received = 0
+        self._queue: deque[tuple[bytes, bytes | None, int]] = deque()
+        self._queue_lock = threading.Lock()
+        self._depth = None if qos.history == HistoryPolicy.KEEP_ALL else qos.effective_depth
+        self._scheduled = False  # a take is waiting in the node's work queue
+        self.dropped = 0  # messages pushed out of a full queue (launchkit extension)
         session = node.context.session
         reliable = qos.reliability == ReliabilityPolicy.RELIABLE
         if qos.durability == DurabilityPolicy.TRANSIENT_LOCAL:
@@ -236,19 +248,35 @@ class Subscription(_Entity):
         return self.topic_name
 
     def _on_sample(self, sample: zenoh.Sample) -> None:
-        # zenoh's thread: copy out and hand over to the spinning thread
-        received = time.time_ns()
+        # zenoh's thread: copy out, queue, and have the spinning thread take it
         attachment = sample.attachment
-        self.node.post(
-            (
-                self._deliver,
-                (
-                    sample.payload.to_bytes(),
-                    None if attachment is None else attachment.to_bytes(),
-                    received,
-                ),
-            )
+        item = (
+            sample.payload.to_bytes(),
+            None if attachment is None else attachment.to_bytes(),
+            time.time_ns(),
         )
+        with self._queue_lock:
+            if self._depth is not None and len(self._queue) >= self._depth:
+                self._queue.popleft()
+                self.dropped += 1
+            self._queue.append(item)
+            if self._scheduled:
+                return
+            self._scheduled = True
+        self.node.post((self._take, ()))
+
+    def _take(self) -> None:
+        """The spinning thread: deliver the oldest queued message (and come back for the
+        next after the work already waiting)."""
+        with self._queue_lock:
+            if not self._queue:
+                self._scheduled = False
+                return
+            item = self._queue.popleft()
+            self._scheduled = bool(self._queue)
+        if self._scheduled:
+            self.node.post((self._take, ()))
+        self._deliver(*item)
 
     def _deliver(self, payload: bytes, attachment: bytes | None, received: int = 0) -> None:
         # as rmw_zenoh, every publisher feeds every subscription whatever their QoS (its graph

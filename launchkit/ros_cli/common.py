@@ -90,3 +90,9 @@ def normalize_topic(name: str) -> str:
 def visible(token: Token, include_hidden: bool) -> bool:
     """Hidden nodes (names starting with ``_``) are left out unless asked for."""
     return include_hidden or not token.node_name.startswith("_")
+
+
+def hidden_name(name: str) -> bool:
+    """Whether a topic or service name is hidden (a token of it starts with ``_``), as ros2 topic
+    and service list judge it: by the name, not by the node that offers it."""
+    return any(token.startswith("_") for token in name.split("/"))

@@ -10,6 +10,8 @@ from launchkit.ros.msgs import get_message, get_service, normalize_type_name, ty
 from launchkit.ros.msgs._api import MessageTypeError
 
 _BASE, _NAME, _ARRAY, _SEQUENCE = 1, 2, 3, 4
+# the member rosidl gives an empty message (std_srvs/srv/Trigger's request); not in its .msg
+_PLACEHOLDER = "structure_needs_at_least_one_member"
 
 
 def add_parser(commands: Any) -> None:
@@ -35,9 +37,9 @@ def _show(args: argparse.Namespace) -> int:
     text = args.type_name
     if "/srv/" in text.replace("::", "/"):
         srv = get_service(text)
-        print("\n".join(definition(srv._TYPE_NAME + "_Request")))
+        _print_lines(definition(srv._TYPE_NAME + "_Request"))
         print("---")
-        print("\n".join(definition(srv._TYPE_NAME + "_Response")))
+        _print_lines(definition(srv._TYPE_NAME + "_Response"))
         return 0
     try:
         cls = get_message(text)
@@ -53,14 +55,21 @@ def _show(args: argparse.Namespace) -> int:
             args.type_name = srv._TYPE_NAME
             return _show(args)
         raise
-    print("\n".join(definition(cls.__msgtype__)))
+    _print_lines(definition(cls.__msgtype__))
     return 0
+
+
+def _print_lines(lines: list[str]) -> None:
+    for line in lines:
+        print(line)
 
 
 def definition(type_name: str, indent: str = "") -> list[str]:
     """The lines ``ros2 interface show`` prints: fields, nested types indented by a tab."""
     lines = [f"{indent}{base} {name}={value}" for name, base, value in constants_of(type_name)]
     for name, desc in fields_of(type_name):
+        if name == _PLACEHOLDER:
+            continue
         lines.append(f"{indent}{_type_text(desc)} {name}")
         nested = _nested(desc)
         if nested is not None:

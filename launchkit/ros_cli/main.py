@@ -6,6 +6,7 @@ import argparse
 import signal
 from types import FrameType
 
+from launchkit._argparse import CommandParser
 from launchkit.ros_cli import (
     interface_commands,
     node_commands,
@@ -27,7 +28,7 @@ _FAMILIES = {
 
 def build_parser() -> argparse.ArgumentParser:
     """The parser of every ROS command."""
-    parser = argparse.ArgumentParser(prog="launchkit")
+    parser = CommandParser(prog="launchkit")
     commands = parser.add_subparsers(dest="command", metavar="COMMAND", required=True)
     for family in _FAMILIES.values():
         family.add_parser(commands)

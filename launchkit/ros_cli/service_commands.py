@@ -14,8 +14,8 @@ from launchkit.ros_cli.common import (
     add_router_option,
     cli_node,
     graph_tokens,
+    hidden_name,
     normalize_topic,
-    visible,
 )
 
 
@@ -46,7 +46,7 @@ def _services(args: argparse.Namespace, hidden: bool) -> dict[str, set[str]]:
         tokens = graph_tokens(node)
     services: dict[str, set[str]] = {}
     for t in tokens:
-        if t.kind == "SS" and visible(t, hidden):
+        if t.kind == "SS" and (hidden or not hidden_name(t.topic)):
             services.setdefault(t.topic, set()).add(t.type_name)
     return services
 

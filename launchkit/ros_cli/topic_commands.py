@@ -21,8 +21,8 @@ from launchkit.ros_cli.common import (
     add_router_option,
     cli_node,
     graph_tokens,
+    hidden_name,
     normalize_topic,
-    visible,
 )
 
 
@@ -79,7 +79,7 @@ def add_parser(commands: Any) -> None:
 def _topics(tokens: list[Token], hidden: bool) -> dict[str, set[str]]:
     topics: dict[str, set[str]] = {}
     for t in tokens:
-        if t.kind in ("MP", "MS") and visible(t, hidden):
+        if t.kind in ("MP", "MS") and (hidden or not hidden_name(t.topic)):
             topics.setdefault(t.topic, set()).add(t.type_name)
     return topics
 

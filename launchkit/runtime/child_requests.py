@@ -1,12 +1,15 @@
 """The launcher's child-request socket: processes of a launch ask it to start processes for them.
 
-The supervisor opens a ``SOCK_SEQPACKET`` Unix socket in a private (0700) temporary folder and
+The supervisor opens a ``SOCK_SEQPACKET`` Unix socket in its private (0700) run folder and
 gives its path to every process it starts (``$LAUNCHKIT_SUPERVISOR_SOCKET``). Connections and
 requests are read by the supervisor's own loop, on its thread, like everything else. The
 protocol and the client are in :mod:`launchkit.runtime.supervisor_client`.
 
 A connection belongs to the process of the launch whose session the connecting process is in
-(every process the launcher starts leads its own session); other connections get errors. A
+(every process the launcher starts leads its own session). Any other connection, and one beyond
+:data:`MAX_CONNECTIONS`, gets one error reply at once and is closed when its first request (or
+its end) arrives, and at the latest when :data:`MAX_REFUSED` newer refused ones wait: whatever
+connects, the launcher holds a bounded number of descriptors for it. A
 process started on request inherits its owner's launch environment, working folder, output mode
 and stop timeouts unless the request says otherwise, and is supervised like a declared one.
 When the connection closes (the owner exited, crashed, was restarted or closed the client)
@@ -20,10 +23,9 @@ import json
 import math
 import os
 import selectors
-import shutil
 import socket
 import struct
-import tempfile
+from collections import deque
 from dataclasses import dataclass, field
 from typing import Any, Protocol
 
@@ -35,6 +37,10 @@ from launchkit.runtime.supervisor_client import MAX_PACKET
 
 _START_KEYS = {"op", "name", "cmd", "env", "cwd", "respawn", "respawn_delay", "output"}
 _UCRED = struct.Struct("3i")  # pid, uid, gid
+#: Connections open at once; one more is refused (each process of a launch needs one).
+MAX_CONNECTIONS = 256
+#: Refused connections kept until their peer's request arrives (so it can read why).
+MAX_REFUSED = 16
 
 
 class RequestError(Exception):
@@ -60,7 +66,7 @@ class ChildHost(Protocol):
 @dataclass
 class _Connection:
     sock: socket.socket
-    owner: SupervisedProcess | None
+    owner: SupervisedProcess
     peer: int
     started: dict[int, SupervisedProcess] = field(default_factory=dict)
 
@@ -68,28 +74,24 @@ class _Connection:
 class ChildRequests:
     """The listening socket, its connections, and what each connection started."""
 
-    def __init__(self, host: ChildHost, selector: selectors.BaseSelector) -> None:
-        """Listen in a new private folder; ``OSError`` where Unix seqpacket sockets are missing."""
+    def __init__(self, host: ChildHost, selector: selectors.BaseSelector, folder: str) -> None:
+        """Listen in ``folder`` (private to the launcher); ``OSError`` where Unix seqpacket
+        sockets are missing."""
         self._host = host
         self._selector = selector
         if not hasattr(socket, "SO_PEERCRED"):
             raise OSError("this system cannot tell who connects to a Unix socket (SO_PEERCRED)")
-        self.folder = tempfile.mkdtemp(prefix="launchkit-")  # mode 0700
-        self.path = os.path.join(self.folder, "children.sock")
-        try:
-            self._listener = socket.socket(socket.AF_UNIX, socket.SOCK_SEQPACKET)
-        except OSError:
-            shutil.rmtree(self.folder, ignore_errors=True)
-            raise
+        self.path = os.path.join(folder, "children.sock")
+        self._listener = socket.socket(socket.AF_UNIX, socket.SOCK_SEQPACKET)
         try:
             self._listener.bind(self.path)
             self._listener.listen(16)
         except OSError:
             self._listener.close()
-            shutil.rmtree(self.folder, ignore_errors=True)
             raise
         self._listener.setblocking(False)
         self._connections: dict[int, _Connection] = {}
+        self._refused: deque[socket.socket] = deque()
         selector.register(self._listener, selectors.EVENT_READ, self._accept)
 
     def environment(self) -> dict[str, str]:
@@ -97,12 +99,17 @@ class ChildRequests:
         return {SUPERVISOR_SOCKET: self.path}
 
     def close(self) -> None:
-        """Close every connection and the socket, and remove its folder."""
+        """Close every connection and the socket (its folder is the supervisor's to remove)."""
         for connection in list(self._connections.values()):
             self._forget(connection)
+        while self._refused:
+            self._drop_refused(self._refused[0])
         self._selector.unregister(self._listener)
         self._listener.close()
-        shutil.rmtree(self.folder, ignore_errors=True)
+        try:
+            os.unlink(self.path)
+        except OSError:
+            pass
 
     # -- on the supervisor's loop ------------------------------------------------------------
 
@@ -119,9 +126,41 @@ class ChildRequests:
             owner = self._host.owner_of(os.getsid(pid))
         except OSError:
             owner = None  # it is gone already
+        if owner is None:
+            self._refuse(sock, f"process {pid} is not a process of this launch")
+            return
+        if len(self._connections) >= MAX_CONNECTIONS:
+            self._refuse(sock, f"the launcher has {MAX_CONNECTIONS} connections open already")
+            return
         connection = _Connection(sock, owner, pid)
         self._connections[sock.fileno()] = connection
         self._selector.register(sock, selectors.EVENT_READ, lambda: self._receive(connection))
+
+    def _refuse(self, sock: socket.socket, reason: str) -> None:
+        """Send the error reply the peer's first request will read; close the connection once
+        that request arrives (closing earlier would reset it and lose the reply)."""
+        try:
+            sock.send(json.dumps({"ok": False, "error": reason}).encode())
+        except OSError:
+            sock.close()
+            return
+        if len(self._refused) >= MAX_REFUSED:
+            self._drop_refused(self._refused[0])
+        self._refused.append(sock)
+        self._selector.register(sock, selectors.EVENT_READ, lambda: self._drop_refused(sock))
+
+    def _drop_refused(self, sock: socket.socket) -> None:
+        self._refused.remove(sock)
+        self._selector.unregister(sock)
+        # read what it sent first: closing a socket with unread data resets the peer, which
+        # then cannot read the reply
+        for _ in range(8):
+            try:
+                if not sock.recv(MAX_PACKET):
+                    break
+            except OSError:
+                break
+        sock.close()
 
     def _receive(self, connection: _Connection) -> None:
         try:
@@ -150,8 +189,6 @@ class ChildRequests:
 
     def _serve(self, connection: _Connection, request: dict[str, Any]) -> dict[str, Any]:
         owner = connection.owner
-        if owner is None:
-            raise RequestError(f"process {connection.peer} is not a process of this launch")
         op = request.get("op")
         if op == "start":
             process = self._host.start_child(_spec(request, owner), owner)
@@ -183,7 +220,7 @@ class ChildRequests:
             for p in connection.started.values()
             if not p.lifecycle.retired and (p.alive or p.state is State.BACKOFF)
         ]
-        if running and connection.owner is not None:
+        if running:
             self._host.log(
                 "INFO",
                 "launch",

@@ -3,7 +3,8 @@
 The launcher writes one JSON object a line on a Unix stream socket it inherited as ``FD``::
 
     {"event": "started", "process": "talker-1", "name": "talker", "node": "chatter",
-     "pid": 4242, "cmd": [...], "respawn": false, "sigterm_timeout": 5.0, "sigkill_timeout": 5.0}
+     "pid": 4242, "cmd": [...], "respawn": false, "required": false, "sigterm_timeout": 5.0,
+     "sigkill_timeout": 5.0}                    required: on_exit="shutdown"
     {"event": "output", "process": "talker-1", "stream": "stdout", "text": "hello 1"}
     {"event": "stopping", "process": "worker-4"}  one process stopped on request (not a shutdown)
     {"event": "exited", "process": "talker-1", "pid": 4242, "returncode": 0}
@@ -74,6 +75,7 @@ class EventWriter(SupervisorHooks):
                 "pid": process.pid,
                 "cmd": spec.cmd,
                 "respawn": spec.respawn,
+                "required": spec.on_exit_shutdown,
                 "sigterm_timeout": spec.sigterm_timeout,
                 "sigkill_timeout": spec.sigkill_timeout,
             }

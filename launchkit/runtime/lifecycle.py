@@ -10,6 +10,11 @@
                                             (SIGINT ─sigterm_timeout─▶ SIGTERM
                                              ─sigkill_timeout─▶ SIGKILL for a launch's processes)
 
+A respawn waits ``respawn_delay`` seconds, as ROS's; an incarnation that exits within
+:attr:`RespawnPolicy.quick_exit` seconds of its start makes the next respawn wait longer, doubling
+from :attr:`RespawnPolicy.backoff_first` up to :attr:`RespawnPolicy.backoff_max` while the quick
+exits go on (ROS respawns a program that fails at once in a busy loop).
+
 Nothing here touches a process, a clock or a signal. Every event comes with the time it
 happened, every decision comes back as an effect (:class:`SendSignal`, :class:`Respawn`) or an
 :class:`ExitOutcome` for the caller to carry out and report, and :attr:`Lifecycle.deadline` says
@@ -79,11 +84,24 @@ class Escalation:
 @dataclass(frozen=True)
 class RespawnPolicy:
     """Whether a process that exits on its own is started again: after ``delay`` seconds, at
-    most ``max_retries`` times (negative: without limit), as ROS's ``respawn`` attributes."""
+    most ``max_retries`` times (negative: without limit), as ROS's ``respawn`` attributes.
+
+    An incarnation that ran less than ``quick_exit`` seconds failed quickly: the k-th such
+    exit in a row waits at least ``backoff_first * 2**(k-1)`` seconds, at most ``backoff_max``."""
 
     enabled: bool = False
     delay: float = 0.0
     max_retries: int = -1
+    quick_exit: float = 1.0
+    backoff_first: float = 0.1
+    backoff_max: float = 10.0
+
+    def wait(self, quick_exits: int) -> float:
+        """Seconds before the next start after ``quick_exits`` quick exits in a row."""
+        if quick_exits <= 0:
+            return self.delay
+        backoff = min(self.backoff_max, self.backoff_first * 2.0 ** min(quick_exits - 1, 60))
+        return max(self.delay, backoff)
 
 
 @dataclass(frozen=True)
@@ -104,12 +122,15 @@ class Respawn:
 @dataclass(frozen=True)
 class ExitOutcome:
     """What an exit means: ``expected`` when a signal we sent ended it; ``respawn_in`` seconds
-    when a respawn is scheduled; ``gave_up_after`` retries when the policy's limit is reached."""
+    when a respawn is scheduled (``quick_exits``: how many exits in a row came soon after their
+    start, which lengthens the wait); ``gave_up_after`` retries when the policy's limit is
+    reached."""
 
     code: int
     expected: bool
     respawn_in: float | None = None
     gave_up_after: int | None = None
+    quick_exits: int = 0
 
 
 class Lifecycle:
@@ -124,6 +145,8 @@ class Lifecycle:
         self.returncode: int | None = None
         self.signals: list[signal.Signals] = []  # sent to the current incarnation
         self.deadline: float | None = None  # when due() has something to do
+        self.started_at: float | None = None  # when the current incarnation started
+        self.quick_exits = 0  # exits in a row within respawn.quick_exit of their start
 
     @property
     def alive(self) -> bool:
@@ -132,12 +155,14 @@ class Lifecycle:
 
     # -- events --------------------------------------------------------------------------------
 
-    def started(self) -> None:
-        """A new incarnation is running."""
+    def started(self, now: float | None = None) -> None:
+        """A new incarnation is running (since ``now``, when known: a quick exit is seen only
+        then)."""
         self.state = State.RUNNING
         self.returncode = None
         self.signals.clear()
         self.deadline = None
+        self.started_at = now
 
     def failed(self) -> None:
         """The process could not be started."""
@@ -153,14 +178,17 @@ class Lifecycle:
         self.state = State.EXITED
         self.deadline = None
         policy = self.respawn
+        quick = self.started_at is not None and now - self.started_at < policy.quick_exit
+        self.quick_exits = self.quick_exits + 1 if quick else 0
         if not (respawn_allowed and policy.enabled) or self.retired or stopping:
             return ExitOutcome(code, expected)
         if 0 <= policy.max_retries <= self.retries:
             return ExitOutcome(code, expected, gave_up_after=policy.max_retries)
         self.retries += 1
         self.state = State.BACKOFF
-        self.deadline = now + policy.delay
-        return ExitOutcome(code, expected, respawn_in=policy.delay)
+        wait = policy.wait(self.quick_exits)
+        self.deadline = now + wait
+        return ExitOutcome(code, expected, respawn_in=wait, quick_exits=self.quick_exits)
 
     def stop(self, now: float, *, retire: bool = False) -> SendSignal | None:
         """Stop the process: the first signal of the ladder if it runs, nothing if it is

@@ -2,10 +2,15 @@
 
 ``PR_SET_PDEATHSIG`` reaches only direct children, and nothing runs in a process that was
 SIGKILLed. So the launcher starts one tiny ``sh`` in its own session, tells it each child's
-process group over a pipe, and kills it on a clean exit. If the launcher dies any other way the
-pipe closes, ``read`` returns, and the watchdog SIGKILLs every group it was told about,
-grandchildren of ``sh -c`` included, and removes the folder it was told about (that of the
-launcher's child-request socket).
+process group over a pipe (and each group that is gone again, so that a reused id is never
+killed), and kills it on a clean exit. If the launcher dies any other way the pipe closes,
+``read`` returns, and the watchdog SIGKILLs every group it still knows, grandchildren of
+``sh -c`` included, and removes the folder it was told about (the launcher's private run folder:
+the child-request socket, generated parameter files, the plugin files of its processes).
+
+A child's program does not start before the watchdog knows its group (see
+:func:`launchkit.runtime.process.gated`), so no SIGKILL of the launcher can fall between the
+two.
 """
 
 from __future__ import annotations
@@ -14,10 +19,16 @@ import os
 import signal
 import subprocess
 
+# Groups are kept in one string " g1 g2 ... " so that a line "-g" can take one out without a
+# fork: ${gs%% g *} is what comes before it, ${gs#* g } what comes after.
 _SCRIPT = (
-    'trap "" INT TERM HUP QUIT; d=""; '
-    'while read -r g; do case "$g" in /*) d="$g";; *) set -- "$@" "$g";; esac; done; '
-    'for g in "$@"; do kill -9 "-$g" 2>/dev/null; done; '
+    'trap "" INT TERM HUP QUIT; d=""; gs=" "; '
+    'while read -r g; do case "$g" in '
+    '/*) d="$g";; '
+    '-*) g="${g#-}"; case "$gs" in *" $g "*) gs="${gs%% $g *} ${gs#* $g }";; esac;; '
+    '*) gs="$gs$g ";; '
+    "esac; done; "
+    'for g in $gs; do kill -9 "-$g" 2>/dev/null; done; '
     '[ -z "$d" ] || rm -rf "$d"'
 )
 
@@ -31,6 +42,11 @@ class OrphanGuard:
     def watch(self, pgid: int) -> None:
         """Add a process group to kill should the launcher die."""
         self._tell(str(pgid))
+
+    def forget(self, pgid: int) -> None:
+        """A process group is empty now: its id may be reused, never kill it."""
+        if self._process is not None:
+            self._tell(f"-{pgid}")
 
     def remove_on_death(self, folder: str) -> None:
         """The folder (an absolute path) to remove should the launcher die."""

@@ -1,6 +1,10 @@
 """One supervised process as the operating system sees it: spawned in its own session (so its
 own process group), its output read line by line, its group signalled.
 
+A child is started *gated*: ``/bin/sh`` waits for one line on its stdin before it execs the
+program, and the line is written only once ``on_spawn`` (the orphan guard) knows the new group.
+If the launcher is SIGKILLed in between, the gate reads end-of-file and the program never runs.
+
 The supervisor makes processes through a factory (:data:`ProcessFactory`), so its loop can be
 unit-tested with processes that are not real (:class:`SupervisedProcess` is what it needs of
 one). Where each process is in its life is its :class:`~launchkit.runtime.lifecycle.Lifecycle`.
@@ -21,6 +25,13 @@ from typing import Protocol
 from launchkit.description.process_spec import ProcessSpec
 from launchkit.errors import LaunchFileError
 from launchkit.runtime.lifecycle import Escalation, Lifecycle, RespawnPolicy, State
+from launchkit.runtime.lines import LineBuffer
+
+#: The most a single read of one stream takes (then the loop looks at everything else).
+READ_CHUNK = 64 * 1024
+
+# sh -c GATE PROGRAM ARGS...: $0 is the program, "$@" its arguments.
+_GATE = 'read -r _ || exit 125; exec "$0" "$@" </dev/null'
 
 
 @dataclass
@@ -29,7 +40,7 @@ class Stream:
 
     fd: int
     kind: str  # "stdout" or "stderr"
-    pending: bytes = b""
+    lines: LineBuffer = field(default_factory=LineBuffer)
 
 
 def lifecycle_of(spec: ProcessSpec) -> Lifecycle:
@@ -65,8 +76,8 @@ class SupervisedProcess(Protocol):
     def spawn(self) -> None:
         """Start a new incarnation; ``OSError`` if it cannot be started."""
 
-    def read(self, fd: int) -> tuple[list[str], bool]:
-        """Complete lines available on ``fd``, and whether it reached EOF."""
+    def read(self, fd: int, limit: int = READ_CHUNK) -> tuple[list[str], bool]:
+        """Lines available on ``fd`` (reading at most ``limit`` bytes), and whether it ended."""
 
     def close_stream(self, fd: int) -> None:
         """Forget and close one output stream."""
@@ -127,7 +138,8 @@ class ManagedProcess:
         return self.lifecycle.alive
 
     def spawn(self) -> None:
-        """Start the process in a new session (so its own process group); raises OSError."""
+        """Start the process in a new session (so its own process group); raises OSError.
+        Streams of an earlier incarnation that a grandchild still holds stay until their end."""
         spec = self.spec
         if spec.emulate_tty:
             out_r, out_w = pty.openpty()
@@ -135,47 +147,52 @@ class ManagedProcess:
         else:
             out_r, out_w = os.pipe()
             err_r, err_w = os.pipe()
+        gate_r, gate_w = os.pipe()
         try:
             self.popen = subprocess.Popen(
-                spec.cmd,
+                ["/bin/sh", "-c", _GATE, *spec.cmd],
                 cwd=spec.cwd or None,
                 env=spec.env,
-                stdin=subprocess.DEVNULL,
+                stdin=gate_r,
                 stdout=out_w,
                 stderr=err_w,
                 start_new_session=True,
                 close_fds=True,
             )
         except BaseException:
-            for fd in {out_r, out_w, err_r, err_w} - {None}:
+            for fd in {out_r, err_r, gate_w} - {None}:
                 os.close(fd)  # type: ignore[arg-type]
             raise
         finally:
             # the child has its copies; ours must go so EOF arrives when it exits
-            for fd in {out_w, err_w}:
+            for fd in {out_w, err_w, gate_r}:
                 try:
                     os.close(fd)
                 except OSError:
                     pass
-        self.streams.clear()
         self._add_stream(out_r, "stdout")
         if err_r is not None:
             self._add_stream(err_r, "stderr")
         self.pidfd = _pidfd_open(self.popen.pid)
-        self.on_spawn(self.popen.pid)
+        try:
+            self.on_spawn(self.popen.pid)
+        finally:
+            _open_gate(gate_w)
 
     def _add_stream(self, fd: int, kind: str) -> None:
         os.set_blocking(fd, False)
         self.streams[fd] = Stream(fd, kind)
 
-    def read(self, fd: int) -> tuple[list[str], bool]:
-        """Read what is available on ``fd``: complete lines, and whether it reached EOF."""
+    def read(self, fd: int, limit: int = READ_CHUNK) -> tuple[list[str], bool]:
+        """Read what is available on ``fd``, at most ``limit`` bytes (so that a flood cannot
+        hold the loop): the lines it completes, and whether the stream ended."""
         stream = self.streams[fd]
         lines: list[str] = []
         eof = False
-        while True:
+        taken = 0
+        while taken < limit:
             try:
-                chunk = os.read(fd, 65536)
+                chunk = os.read(fd, min(READ_CHUNK, limit - taken))
             except BlockingIOError:
                 break
             except OSError as error:
@@ -185,12 +202,10 @@ class ManagedProcess:
             if not chunk:
                 eof = True
                 break
-            stream.pending += chunk
-            *complete, stream.pending = stream.pending.split(b"\n")
-            lines.extend(_decode(line) for line in complete)
-        if eof and stream.pending:
-            lines.append(_decode(stream.pending))
-            stream.pending = b""
+            taken += len(chunk)
+            lines.extend(stream.lines.feed(chunk))
+        if eof:
+            lines.extend(stream.lines.finish())
         return lines, eof
 
     def close_stream(self, fd: int) -> None:
@@ -248,7 +263,13 @@ def group_exists(pgid: int | None) -> bool:
 
 
 def check_program(spec: ProcessSpec) -> None:
-    """Fail before anything starts when a process's program does not exist."""
+    """Fail before anything starts when a process's working folder or program does not exist."""
+    if spec.cwd and not os.path.isdir(spec.cwd):
+        raise LaunchFileError(
+            f"working folder '{spec.cwd}' of process '{spec.name}' does not exist",
+            spec.location,
+            expected="an existing folder in cwd=",
+        )
     program = spec.cmd[0]
     if "/" in program:
         path = program if os.path.isabs(program) else os.path.join(spec.cwd or os.getcwd(), program)
@@ -263,8 +284,13 @@ def check_program(spec: ProcessSpec) -> None:
     )
 
 
-def _decode(data: bytes) -> str:
-    return data.decode("utf-8", errors="replace").rstrip("\r")
+def _open_gate(fd: int) -> None:
+    try:
+        os.write(fd, b"\n")
+    except OSError:
+        pass  # it died already (a signal to its group)
+    finally:
+        os.close(fd)
 
 
 def _pidfd_open(pid: int) -> int | None:

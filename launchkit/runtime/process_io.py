@@ -4,6 +4,11 @@ Each line a child writes goes to the screen and logs (:class:`~launchkit.runtime
 and to the launch's observers as soon as it is read; a child's exit is seen through its pidfd
 (or by polling where the kernel has none), and its remaining output is read before the exit is
 reported, so lines stay in the order things happened.
+
+Each turn of the loop reads at most :data:`~launchkit.runtime.process.READ_CHUNK` bytes of a
+stream, so a child flooding its output (``yes``) shares the loop with everything else: signals,
+other children, timers. When a child exits, up to :data:`DRAIN_LIMIT` more bytes are read at
+once (what its pipe holds); anything a leftover grandchild keeps writing follows as it comes.
 """
 
 from __future__ import annotations
@@ -13,9 +18,10 @@ from collections.abc import Callable, Sequence
 
 from launchkit.runtime.hooks import SupervisorHooks
 from launchkit.runtime.output import Output
-from launchkit.runtime.process import SupervisedProcess
+from launchkit.runtime.process import READ_CHUNK, SupervisedProcess
 
 POLL_INTERVAL = 0.05  # seconds between looks at children without a pidfd
+DRAIN_LIMIT = 1024 * 1024  # bytes read at once after an exit (a pipe holds 64 KiB by default)
 
 
 class ProcessIO:
@@ -37,8 +43,10 @@ class ProcessIO:
 
     def watch(self, process: SupervisedProcess) -> None:
         """Follow a new incarnation's output and exit."""
+        registered = self._selector.get_map()
         for fd in process.streams:
-            self._selector.register(fd, selectors.EVENT_READ, _bind(self.read, process, fd))
+            if fd not in registered:  # an earlier incarnation's stream is registered already
+                self._selector.register(fd, selectors.EVENT_READ, _bind(self.read, process, fd))
         if process.pidfd is not None:
             self._selector.register(
                 process.pidfd, selectors.EVENT_READ, _bind(self._on_exit, process)
@@ -46,12 +54,13 @@ class ProcessIO:
         else:
             self.needs_polling = True
 
-    def read(self, process: SupervisedProcess, fd: int) -> None:
-        """Pass on what ``process`` wrote on ``fd``; stop following the stream at its end."""
-        lines, eof = process.read(fd)
+    def read(self, process: SupervisedProcess, fd: int, limit: int = READ_CHUNK) -> None:
+        """Pass on what ``process`` wrote on ``fd`` (at most ``limit`` bytes of it); stop
+        following the stream at its end."""
+        lines, eof = process.read(fd, limit)
         kind = process.streams[fd].kind
+        self._output.child_lines(process.label, process.index, lines, process.spec.output, kind)
         for line in lines:
-            self._output.child_line(process.label, process.index, line, process.spec.output, kind)
             self._hooks.process_output(process, kind, line)
         if eof:
             self._selector.unregister(fd)
@@ -63,7 +72,7 @@ class ProcessIO:
             self._selector.unregister(process.pidfd)
             process.close_pidfd()
         for fd in list(process.streams):
-            self.read(process, fd)
+            self.read(process, fd, DRAIN_LIMIT)
 
     def poll(self, processes: Sequence[SupervisedProcess]) -> None:
         """Check the running processes that have no pidfd for an exit."""

@@ -31,7 +31,8 @@ class ProcessReport:
         """Spawning failed (the launch then shuts down)."""
         spec = process.spec
         where = f" ({spec.location})" if spec.location else ""
-        message = f"could not start process: {error.strerror}: '{spec.cmd[0]}'{where}"
+        what = error.filename if error.filename is not None else spec.cmd[0]
+        message = f"could not start process: {error.strerror}: '{what}'{where}"
         self._line("ERROR", process, message)
         self._hooks.launch_error(f"{process.label}: {message}")
 
@@ -51,7 +52,11 @@ class ProcessReport:
     def respawn(self, process: SupervisedProcess, outcome: ExitOutcome) -> None:
         """What the respawn policy decided after an exit, if it decided anything."""
         if outcome.respawn_in is not None:
-            self._line("INFO", process, f"respawning in {outcome.respawn_in:g} s")
+            message = f"respawning in {outcome.respawn_in:g} s"
+            if outcome.respawn_in > process.spec.respawn_delay:
+                count = outcome.quick_exits
+                message += f" (backing off: {count} exit{'s' * (count > 1)} soon after start)"
+            self._line("INFO", process, message)
         elif outcome.gave_up_after is not None:
             self._line("WARNING", process, f"not respawning: {outcome.gave_up_after} retries used")
 

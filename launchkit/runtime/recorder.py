@@ -120,6 +120,18 @@ class Recorder:
         self._target.append(Recorded("log", text=f"[{level}] [{logger}]: {message}"))
 
 
+def count(items: list[Recorded]) -> tuple[int, int]:
+    """(processes, timers) the recorded launch would start, timers' own included."""
+    processes = timers = 0
+    for item in items:
+        if item.kind == "process":
+            processes += 1
+        elif item.kind == "timer":
+            inner = count(item.inner)
+            processes, timers = processes + inner[0], timers + 1 + inner[1]
+    return processes, timers
+
+
 def render(items: list[Recorded], indent: str = "") -> str:
     """The recorded launch as readable text."""
     lines: list[str] = []

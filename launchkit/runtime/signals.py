@@ -1,17 +1,57 @@
 """Signals to the launcher, delivered to the supervisor's loop as data on a pipe.
 
-The Python-level handlers do nothing; ``signal.set_wakeup_fd`` writes each signal's number to
-a pipe that the loop's selector watches, so a signal is handled on the loop, in order with the
-children's output and exits, never in the middle of something else.
+``signal.set_wakeup_fd`` writes each signal's number to a pipe that the loop's selector watches,
+so a signal is handled on the loop, in order with the children's output and exits, never in the
+middle of something else. The Python-level handlers do nothing, except while the launcher
+evaluates launch file actions (:meth:`SignalPipe.interrupting`): evaluation can block for as long
+as a ``$(command)`` runs, so there a signal raises :class:`Interrupted` to abandon it; the
+signal's number is in the pipe all the same, and the loop handles it as usual afterwards.
 """
 
 from __future__ import annotations
 
 import os
 import signal
+from collections.abc import Iterator
+from contextlib import contextmanager
 
 #: What the launcher handles: each starts an orderly shutdown, a second one escalates.
 HANDLED_SIGNALS = (signal.SIGINT, signal.SIGTERM, signal.SIGHUP, signal.SIGQUIT)
+
+
+class Interrupted(KeyboardInterrupt):
+    """A handled signal arrived while the launcher was evaluating: what it evaluated is
+    abandoned (a ``$(command)`` it waited for is killed, with its process group).
+
+    A ``KeyboardInterrupt``, so that no ``except Exception`` on the way swallows it."""
+
+    def __init__(self, signum: int) -> None:
+        super().__init__(signal.Signals(signum).name)
+        self.signum = signum
+
+
+def exit_status(signum: int) -> int:
+    """The launcher's exit status after a shutdown that ``signum`` started: 0 for SIGINT (as
+    ``ros2 launch`` after Ctrl-C), else 128 + the signal's number, as a shell reports a
+    program that a signal ended (``ros2 launch`` dies of SIGTERM and SIGHUP: 143 and 129)."""
+    return 0 if signum == signal.SIGINT else 128 + signum
+
+
+@contextmanager
+def raising() -> Iterator[None]:
+    """Within the body, each of :data:`HANDLED_SIGNALS` raises :class:`Interrupted` (for work
+    without a supervisor loop, such as ``--print``: a ``$(command)`` it runs is then killed
+    rather than orphaned by SIGTERM's default action). Main thread only."""
+    previous = {signum: signal.signal(signum, _raise) for signum in HANDLED_SIGNALS}
+    try:
+        yield
+    finally:
+        for signum, handler in previous.items():
+            signal.signal(signum, handler)
+
+
+def _raise(signum: int, frame: object) -> None:
+    raise Interrupted(signum)
 
 
 class SignalPipe:
@@ -20,6 +60,9 @@ class SignalPipe:
     def __init__(self) -> None:
         self._read_fd, self._write_fd = os.pipe()
         self._previous: dict[int, signal._HANDLER] = {}
+        self._raising = False
+        self._deferring = False
+        self._deferred: int | None = None
 
     @property
     def fd(self) -> int:
@@ -32,7 +75,34 @@ class SignalPipe:
         os.set_blocking(self._write_fd, False)
         signal.set_wakeup_fd(self._write_fd, warn_on_full_buffer=False)
         for signum in HANDLED_SIGNALS:
-            self._previous[signum] = signal.signal(signum, _ignore)
+            self._previous[signum] = signal.signal(signum, self._handle)
+
+    @contextmanager
+    def interrupting(self) -> Iterator[None]:
+        """Within the body, a handled signal raises :class:`Interrupted` (once: the cleanup
+        that follows is not interrupted again; later signals only reach the pipe)."""
+        self._raising = True
+        try:
+            yield
+        finally:
+            self._raising = False
+
+    @contextmanager
+    def deferred(self) -> Iterator[None]:
+        """Within :meth:`interrupting`, a body that must not be cut in half (a process being
+        started, a shutdown being sent): a signal arriving in it raises at its end instead."""
+        if not self._raising or self._deferring:
+            yield
+            return
+        self._deferring = True
+        try:
+            yield
+        finally:
+            self._deferring = False
+            signum, self._deferred = self._deferred, None
+        if signum is not None and self._raising:
+            self._raising = False
+            raise Interrupted(signum)
 
     def pending(self) -> list[int]:
         """The signals received since the last call, in order."""
@@ -51,6 +121,13 @@ class SignalPipe:
         os.close(self._read_fd)
         os.close(self._write_fd)
 
-
-def _ignore(signum: int, frame: object) -> None:
-    """Python-level handler: the wakeup fd carries the signal to the loop."""
+    def _handle(self, signum: int, frame: object) -> None:
+        """Python-level handler: the wakeup fd carries the signal to the loop; while
+        evaluating, also abandon the evaluation."""
+        if not self._raising:
+            return
+        if self._deferring:
+            self._deferred = self._deferred or signum
+            return
+        self._raising = False
+        raise Interrupted(signum)

@@ -10,6 +10,9 @@ Each process's states, respawns and stop escalation are decided by its
 says so on screen. Processes come from an injectable factory and time from an injectable clock,
 so the loop is unit-tested without real processes (``tests/engine/test_supervisor_loop.py``).
 
+Evaluating actions (the first pass, a timer) may block, in a ``$(command)`` say; there a signal
+interrupts the evaluation (:meth:`SignalPipe.interrupting`), and is then handled as always.
+
 Processes of the launch may also ask the supervisor, over the child-request socket it serves on
 the same loop (:mod:`launchkit.runtime.child_requests`), to start processes for them; those are
 supervised exactly like declared ones and stopped when their owner's connection closes.
@@ -21,27 +24,29 @@ import selectors
 import signal
 import time
 from collections.abc import Callable
+from pathlib import Path
 from typing import TYPE_CHECKING
 
 from launchkit.description.events import ExecutionComplete
 from launchkit.description.process_spec import ProcessSpec
+from launchkit.envvars import RUN_TMPDIR
 from launchkit.errors import LaunchkitError
-from launchkit.runtime.child_requests import ChildRequests, RequestError
+from launchkit.runtime.child_host import ChildHostMixin
+from launchkit.runtime.child_requests import ChildRequests
+from launchkit.runtime.cleanup import LaunchCleanup
 from launchkit.runtime.hooks import SupervisorHooks
 from launchkit.runtime.launch_events import EventRelay
 from launchkit.runtime.lifecycle import Respawn, SendSignal, State
-from launchkit.runtime.orphan_guard import OrphanGuard
 from launchkit.runtime.output import Output
 from launchkit.runtime.process import (
     ManagedProcess,
     ProcessFactory,
     SupervisedProcess,
     check_program,
-    kill_group,
 )
 from launchkit.runtime.process_io import POLL_INTERVAL, ProcessIO
 from launchkit.runtime.process_report import ProcessReport
-from launchkit.runtime.signals import SignalPipe
+from launchkit.runtime.signals import Interrupted, SignalPipe, exit_status
 from launchkit.runtime.timers import TimerQueue
 
 if TYPE_CHECKING:
@@ -50,8 +55,9 @@ if TYPE_CHECKING:
     from launchkit.runtime.network import NodeNetwork
 
 
-class Supervisor:
-    """Runs a launch description and supervises what it starts (the :class:`Runner`)."""
+class Supervisor(ChildHostMixin):
+    """Runs a launch description and supervises what it starts (the :class:`Runner`; the
+    processes started on request are in :class:`ChildHostMixin`)."""
 
     def __init__(
         self,
@@ -73,15 +79,14 @@ class Supervisor:
         self._pending: list[ProcessSpec] | None = None
         self._timers = TimerQueue()
         self._interrupts = 0
-        self._lingering: set[int] = set()
-        self._guard = OrphanGuard()
+        self._cleanup = LaunchCleanup()
         self._selector = selectors.DefaultSelector()
         self._signals = SignalPipe()
         self._io = ProcessIO(self._selector, output, self.hooks, self._on_exit)
         self._report = ProcessReport(output, self.hooks)
         self._requests: ChildRequests | None = None
         self._new_process = process_factory or (
-            lambda spec, label, index: ManagedProcess(spec, label, index, self._guard.watch)
+            lambda spec, label, index: ManagedProcess(spec, label, index, self._cleanup.watch)
         )
 
     # -- the Runner protocol (what actions call) ----------------------------------------------
@@ -93,7 +98,8 @@ class Supervisor:
         elif self.shutting_down:
             self.log("WARNING", "launch", f"not starting '{spec.name}': shutting down")
         else:
-            self._start_new(spec)
+            with self._signals.deferred():
+                self._start_new(spec)
 
     def schedule_timer(self, period: float, timer: DelayedActions, snapshot: Snapshot) -> None:
         """Fire ``timer`` after ``period`` seconds."""
@@ -101,7 +107,8 @@ class Supervisor:
 
     def request_shutdown(self, reason: str) -> None:
         """``<shutdown>``: stop everything."""
-        self.begin_shutdown(f"shutdown requested: {reason}", cause=reason)
+        with self._signals.deferred():
+            self.begin_shutdown(f"shutdown requested: {reason}", cause=reason)
 
     def log(self, level: str, logger: str, message: str) -> None:
         """A launch line."""
@@ -126,6 +133,7 @@ class Supervisor:
         self._signals.install()
         self._selector.register(self._signals.fd, selectors.EVENT_READ, self._read_signals)
         try:
+            self._open_folder(context)
             self._open_requests()
             self._first_pass(description, context)
             self.hooks.launch_ready()
@@ -136,9 +144,15 @@ class Supervisor:
             self.close()
         return self.exit_code
 
+    def _open_folder(self, context: LaunchContext) -> None:
+        folder = self._cleanup.open_folder()
+        context.scratch_root = Path(folder)
+        context.child_groups = self._cleanup
+
     def _open_requests(self) -> None:
+        assert self._cleanup.folder is not None
         try:
-            self._requests = ChildRequests(self, self._selector)
+            self._requests = ChildRequests(self, self._selector, self._cleanup.folder)
         except OSError as error:
             self.log(
                 "WARNING",
@@ -146,8 +160,6 @@ class Supervisor:
                 f"no child-request socket ({error}): processes that ask "
                 "the launcher to start processes will run them themselves",
             )
-            return
-        self._guard.remove_on_death(self._requests.folder)
 
     def _first_pass(self, description: LaunchDescription, context: LaunchContext) -> None:
         self._pending = []
@@ -157,13 +169,18 @@ class Supervisor:
                 "launch",
                 f"launch file {description.path} is deprecated: {description.deprecated}",
             )
-        with context.in_file(description.path):
-            for action in description.actions:
-                action.visit(context)
+        try:
+            with self._signals.interrupting(), context.in_file(description.path):
+                for action in description.actions:
+                    action.visit(context)
+        except Interrupted:
+            pass  # its signal is in the pipe: read below, like any other
         pending, self._pending = self._pending, None
+        self._read_signals()
+        if self.shutting_down:
+            return
         for spec in pending:
             check_program(spec)
-        self._read_signals()
         for spec in pending:
             if self.shutting_down:
                 break
@@ -212,12 +229,14 @@ class Supervisor:
         context = self._context
         assert context is not None
         try:
-            with context.restored(snapshot):
+            with self._signals.interrupting(), context.restored(snapshot):
                 for action in timer.actions:
                     action.visit(context)
             context.emit(ExecutionComplete(action=timer))
         except LaunchkitError as error:
             self.fail(error)
+        except Interrupted:
+            pass  # its signal is in the pipe: the loop reads it next
 
     def fail(self, error: LaunchkitError) -> None:
         """An error while running: report it where it happened and shut down, exit 1."""
@@ -244,10 +263,13 @@ class Supervisor:
     def _managed(self, spec: ProcessSpec) -> SupervisedProcess:
         if self._requests is not None:
             spec.env.update(self._requests.environment())
+        if self._cleanup.folder is not None:
+            spec.env[RUN_TMPDIR] = self._cleanup.folder
         index = len(self.processes) + 1
         return self._new_process(spec, f"{spec.name}-{index}", index)
 
     def _spawn(self, process: SupervisedProcess) -> None:
+        self._cleanup.before_respawn(process)  # an earlier incarnation's leftovers go first
         try:
             process.spawn()
         except OSError as error:
@@ -256,7 +278,7 @@ class Supervisor:
             self.exit_code = self.exit_code or 1
             self.begin_shutdown("a process could not be started", level="ERROR")
             return
-        process.lifecycle.started()
+        process.lifecycle.started(self.clock())
         self._watch(process)
 
     def _watch(self, process: SupervisedProcess) -> None:
@@ -273,11 +295,7 @@ class Supervisor:
             code, self.clock(), respawn_allowed=not (self.shutting_down or required)
         )
         self._report.exited(process, code, outcome)
-        if process.group_alive():
-            if self.shutting_down:
-                process.kill_leftovers()
-            else:
-                self._lingering.add(process.pid or 0)
+        self._cleanup.exited(process, shutting_down=self.shutting_down)
         if self.shutting_down:
             return
         if required:
@@ -288,39 +306,6 @@ class Supervisor:
             )
         else:
             self._report.respawn(process, outcome)
-
-    # -- processes started on request (the ChildHost protocol of child_requests) -------------
-
-    def owner_of(self, pid: int) -> SupervisedProcess | None:
-        """The running process of the launch whose pid (and so session) is ``pid``."""
-        return next((p for p in self.processes if p.alive and p.pid == pid), None)
-
-    def start_child(self, spec: ProcessSpec, owner: SupervisedProcess) -> SupervisedProcess:
-        """Start ``spec`` at ``owner``'s request; :class:`RequestError` if it cannot start
-        (a refused request never stops the launch)."""
-        if self.shutting_down:
-            raise RequestError("the launch is shutting down")
-        try:
-            check_program(spec)
-        except LaunchkitError as error:
-            raise RequestError(error.message) from None
-        process = self._managed(spec)
-        try:
-            process.spawn()
-        except OSError as error:
-            raise RequestError(f"could not start '{spec.cmd[0]}': {error.strerror}") from None
-        process.lifecycle.started()
-        self.processes.append(process)
-        self.log("INFO", process.label, f"started at the request of {owner.label}")
-        self._watch(process)
-        return process
-
-    def stop_child(self, process: SupervisedProcess) -> None:
-        """Stop a process started on request, as a shutdown would, and never respawn it."""
-        effect = process.lifecycle.stop(self.clock(), retire=True)
-        if effect is not None:
-            self.hooks.process_stopping(process)
-            self._send(process, effect)
 
     # -- shutdown ----------------------------------------------------------------------------
 
@@ -360,6 +345,7 @@ class Supervisor:
                 else f"received {name}"
             )
             self.log("WARNING", "launch", what)
+            self.exit_code = self.exit_code or exit_status(signum)
             cause = "ctrl-c (SIGINT)" if signum == signal.SIGINT else name  # ROS's reasons
             self.begin_shutdown("shutting down", cause=cause)
             return
@@ -382,9 +368,6 @@ class Supervisor:
             for fd in list(process.streams):
                 process.close_stream(fd)
             process.close_pidfd()
-        for pgid in self._lingering:
-            kill_group(pgid, signal.SIGKILL)
-        self._guard.dismiss()
         if self._requests is not None:
             self._requests.close()
             self._requests = None
@@ -393,5 +376,6 @@ class Supervisor:
         if self._context is not None:
             self._context.cleanup()
         self._relay.close()
+        self._cleanup.close()
         self._selector.close()
         self._signals.close()

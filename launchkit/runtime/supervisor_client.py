@@ -127,7 +127,10 @@ class SupervisorClient:
                 self._socket.sendall(data)
                 answer = self._socket.recv(MAX_PACKET)
             except OSError as error:
-                raise SupervisorError(f"lost the launcher at {self.path}: {error}") from error
+                # a launcher that refuses a connection says why, then closes it
+                answer = self._refusal()
+                if not answer:
+                    raise SupervisorError(f"lost the launcher at {self.path}: {error}") from error
         if not answer:
             raise SupervisorError(f"the launcher at {self.path} closed the connection")
         reply = json.loads(answer)
@@ -135,6 +138,12 @@ class SupervisorClient:
             reason = reply.get("error") if isinstance(reply, dict) else reply
             raise SupervisorError(str(reason))
         return reply
+
+    def _refusal(self) -> bytes:
+        try:
+            return self._socket.recv(MAX_PACKET, socket.MSG_DONTWAIT)
+        except OSError:
+            return b""
 
     def close(self) -> None:
         """Close the connection: the launcher stops what it started for it."""

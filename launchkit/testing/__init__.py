@@ -18,6 +18,7 @@ from launchkit.testing._errors import (
     LaunchTestError,
     ProcessDied,
     ProcessLeftBehind,
+    UnexpectedExit,
     WaitTimeout,
 )
 from launchkit.testing._factory import LaunchFactory
@@ -38,6 +39,7 @@ __all__ = [
     "ProcessDied",
     "ProcessHandle",
     "ProcessLeftBehind",
+    "UnexpectedExit",
     "WaitTimeout",
     "in_order",
 ]

@@ -5,7 +5,7 @@ from __future__ import annotations
 import os
 import time
 
-TIMEOUT_SCALE_ENV = "LAUNCHKIT_TIMEOUT_SCALE"
+from launchkit.envvars import TIMEOUT_SCALE as TIMEOUT_SCALE_ENV
 
 
 def timeout_scale() -> float:

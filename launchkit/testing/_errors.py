@@ -7,6 +7,7 @@ test failure (not an error in the test's own code) and ``pytest.raises`` can cat
     ├── LaunchFailed       the launch failed before it was ready (launchkit's own message)
     ├── WaitTimeout        a wait ran past its deadline
     ├── ProcessDied        a process (or the launch) ended while a wait needed it
+    │   └── UnexpectedExit a process died and the test never took note of it (at teardown)
     ├── ExitCodeMismatch   ``LaunchResult.assert_exit_codes`` found unexpected exit codes
     └── ProcessLeftBehind  a process of the launch survived its teardown
 """
@@ -27,7 +28,14 @@ class WaitTimeout(LaunchTestError):
 
 
 class ProcessDied(LaunchTestError):
-    """A process died unexpectedly, or the launch ended, while a wait was in progress."""
+    """A wait can no longer succeed: its process exited, the launch failed or ended, or a
+    required process died."""
+
+
+class UnexpectedExit(ProcessDied):
+    """At teardown: a process died unexpectedly and the test never took note of it (with
+    ``wait_exit``, ``returncode``, the result's ``exit_codes`` / ``assert_exit_codes``, or
+    ``launch(..., allow_exit=...)``)."""
 
 
 class ExitCodeMismatch(LaunchTestError):
@@ -43,6 +51,7 @@ for _error in (
     LaunchFailed,
     WaitTimeout,
     ProcessDied,
+    UnexpectedExit,
     ExitCodeMismatch,
     ProcessLeftBehind,
 ):

@@ -7,7 +7,8 @@ from collections.abc import Callable, Mapping
 from pathlib import Path
 
 from launchkit.testing._errors import LaunchTestError
-from launchkit.testing._handle import DEFAULT_READY_TIMEOUT, LaunchHandle, format_items
+from launchkit.testing._handle import DEFAULT_READY_TIMEOUT, LaunchHandle
+from launchkit.testing._waits import AllowExit
 
 
 class LaunchFactory:
@@ -19,11 +20,17 @@ class LaunchFactory:
     """
 
     def __init__(
-        self, here: Path, make_dir: Callable[[], Path], registry: set[LaunchHandle]
+        self,
+        here: Path,
+        make_dir: Callable[[], Path],
+        registry: set[LaunchHandle],
+        failures: Callable[[], int] = lambda: 0,
     ) -> None:
         self._here = here  # the test file's folder
         self._make_dir = make_dir  # a new folder for each launch's logs
         self._registry = registry  # the session's running launches (for its backstop)
+        self._failures = failures  # how many tests of the session have failed so far
+        self._failures_before = failures()
         self.handles: list[LaunchHandle] = []
 
     def __call__(
@@ -35,9 +42,15 @@ class LaunchFactory:
         env: Mapping[str, str] | None = None,
         cwd: str | os.PathLike[str] | None = None,
         ready_timeout: float = DEFAULT_READY_TIMEOUT,
+        allow_exit: AllowExit | None = None,
     ) -> LaunchHandle:
         """Start the launch in the background and return once it is ready (it raises
-        :class:`launchkit.testing.LaunchFailed` with launchkit's message if it fails first)."""
+        :class:`launchkit.testing.LaunchFailed` with launchkit's message if it fails first).
+
+        ``allow_exit`` declares exits the test expects and will not check: process names
+        (any exit code) or ``{name: code or codes}``; ``"*"`` names every process. Any other
+        unexpected death the test never takes note of fails it at teardown.
+        """
         __tracebackhide__ = True
         name = self._resolve(target) if file is None else str(target)
         title = Path(name).name if file is None else f"{name} {file}"
@@ -47,6 +60,7 @@ class LaunchFactory:
             title=title,
             env=env,
             cwd=cwd,
+            allow_exit=allow_exit,
         )
         self.handles.append(handle)
         self._registry.add(handle)
@@ -63,8 +77,12 @@ class LaunchFactory:
         return str(target)  # a file name launchkit looks up in the packages
 
     def stop_all(self) -> None:
-        """Stop every launch this factory started (newest first); raise the first failure
-        after all are stopped."""
+        """Stop every launch this factory started (newest first), then check that the test
+        took note of every unexpected death; raise the first failure after all are stopped.
+
+        Deaths are not held against a test that has already failed (its report shows every
+        process's status).
+        """
         __tracebackhide__ = True
         failures: list[LaunchTestError] = []
         for handle in reversed(self.handles):
@@ -74,5 +92,20 @@ class LaunchFactory:
                 failures.append(failure)
             finally:
                 self._registry.discard(handle)
+        if not failures and self._failures() == self._failures_before:
+            for handle in self.handles:
+                try:
+                    handle.check_exits_noted()
+                except LaunchTestError as failure:
+                    failures.append(failure)
         if failures:
             raise failures[0]
+
+
+def format_items(target: str, file: str | None, args: Mapping[str, object] | None) -> list[str]:
+    """``launchkit run`` positional items: ``[PKG] FILE name:=value ...``."""
+    items = [target] if file is None else [target, file]
+    for name, value in (args or {}).items():
+        text = ("true" if value else "false") if isinstance(value, bool) else str(value)
+        items.append(f"{name}:={text}")
+    return items

@@ -23,12 +23,12 @@ from launchkit.testing._errors import (
     LaunchTestError,
     ProcessDied,
     ProcessLeftBehind,
+    UnexpectedExit,
     WaitTimeout,
 )
 from launchkit.testing._evidence import (
     describe_launch,
     launcher_lines,
-    process_status,
     process_title,
     report_sections,
     tail,
@@ -39,9 +39,10 @@ from launchkit.testing._isolation import (
     free_loopback_port,
     router_endpoint,
 )
-from launchkit.testing._process import Impossible, ProcessHandle
+from launchkit.testing._process import ProcessHandle
 from launchkit.testing._result import LaunchResult
 from launchkit.testing._state import LaunchState
+from launchkit.testing._waits import AllowedExits, AllowExit, Waits
 
 if TYPE_CHECKING:
     from launchkit.testing._topics import TopicProbe
@@ -71,6 +72,7 @@ class LaunchHandle:
         title: str,
         env: Mapping[str, str] | None = None,
         cwd: str | os.PathLike[str] | None = None,
+        allow_exit: AllowExit | None = None,
     ) -> None:
         self.title = title
         self.log_dir = log_dir
@@ -79,6 +81,7 @@ class LaunchHandle:
         self.router = router_endpoint(port)
         self.domain_id = domain_id()
         self.state = LaunchState()
+        self.waits = Waits(self.state, title, self.launcher_log, AllowedExits(allow_exit))
         self._probe: TopicProbe | None = None
         self.stop_notes: list[str] = []
         self._stop_waits: list[float] = []  # scaled seconds each stop signal was given
@@ -213,70 +216,26 @@ class LaunchHandle:
         timeout: float,
         check: Callable[[], T | None],
         *,
-        exempt: str | None = None,
+        subject: str | None = None,
     ) -> T:
         """Wait until ``check()`` (called with the state locked, after every event) returns
-        something other than None; that value.
-
-        Raises :class:`WaitTimeout` at the deadline and :class:`ProcessDied` at once when a
-        process has died unexpectedly (except one ``exempt`` names; until a ``wait_exit`` on
-        it), the launch fails or ends, or ``check`` raises :class:`Impossible`. Both say what
-        was awaited and show every process.
-        """
+        something other than None; that value. ``subject`` names the process the wait is
+        about. See :meth:`Waits.until` for when it fails."""
         __tracebackhide__ = True
-        deadline = Deadline(timeout)
-        state = self.state
-        with state.condition:
-            while True:
-                # an unacknowledged death fails every wait, even one already satisfied
-                died = self._death(exempt)
-                if died is not None:
-                    raise ProcessDied(self._failure(what, died))
-                try:
-                    value = check()
-                except Impossible as why:
-                    # a launch error is the cause of whatever ended afterwards: name it first
-                    cause = self._problem() if state.errors else None
-                    raise ProcessDied(
-                        self._failure(what, cause or f"{why} before it came")
-                    ) from None
-                if value is not None:
-                    return value
-                problem = self._problem()
-                if problem is not None:
-                    raise ProcessDied(self._failure(what, problem))
-                if deadline.expired():
-                    raise WaitTimeout(
-                        self._failure(what, f"timed out after {deadline.seconds:g} s")
-                    )
-                state.condition.wait(deadline.remaining())
+        return self.waits.until(what, timeout, check, subject=subject)
 
-    def _death(self, exempt: str | None) -> str | None:
-        for record in self.state.processes.values():
-            if record.died_unexpectedly() and not (exempt and record.matches(exempt)):
-                return f"process {record.label} died unexpectedly: {process_status(record)}"
-        return None
+    def check_exits_noted(self) -> None:
+        """Raise :class:`UnexpectedExit` if a process died unexpectedly and the test never
+        took note of it (the fixtures call this at teardown, after stopping the launch)."""
+        __tracebackhide__ = True
+        if self._result is not None and self._result.noted:
+            return
+        with self.state.condition:
+            verdict = self.waits.teardown_verdict()
+        if verdict is not None:
+            raise UnexpectedExit(verdict)
 
-    def _problem(self) -> str | None:
-        state = self.state
-        if state.errors and not state.stopping:
-            return f"the launch failed: {state.errors[-1]}"
-        if state.stopping:
-            return "the launch is being stopped"
-        if state.channel_closed:
-            why = f"; {state.shutdown_reason}" if state.shutdown_reason else ""
-            code = state.launcher_returncode
-            status = "" if code is None else f", launcher {describe_exit(code)}"
-            return f"the launch has ended{why}{status}"
-        return None
-
-    def _failure(self, what: str, problem: str) -> str:
-        return (
-            f"{problem} waiting for {what} in {self.title}\n"
-            f"{describe_launch(self.state, self.launcher_log)}"
-        )
-
-    # -- stopping ------------------------------------------------------------------------------
+    # -- topics --------------------------------------------------------------------------------
 
     def expect_topic(
         self,
@@ -290,7 +249,8 @@ class LaunchHandle:
 
         The test process joins the launch's own ROS network for this; the subscription takes the
         publisher's QoS, so a latched topic's last message counts. Raises :class:`WaitTimeout`
-        saying what arrived, or :class:`ProcessDied` at once if a process dies unexpectedly.
+        saying what arrived, or :class:`ProcessDied` at once if the launch can no longer
+        deliver (it failed or ended, or a required process died).
         """
         __tracebackhide__ = True
         from launchkit.testing._topics import TopicProbe, TopicTimeout
@@ -303,15 +263,17 @@ class LaunchHandle:
 
         def check() -> None:
             with self.state.condition:
-                problem = self._death(None) or self._problem()
+                problem = self.waits.launch_over()
                 if problem is not None:
-                    raise ProcessDied(self._failure(what, problem))
+                    raise ProcessDied(self.waits.failure(what, problem))
 
         try:
             return self._probe.expect(topic, min_messages, Deadline(within), where, check)
         except TopicTimeout as why:
             with self.state.condition:
-                raise WaitTimeout(self._failure(what, f"timed out: {why}")) from None
+                raise WaitTimeout(self.waits.failure(what, f"timed out: {why}")) from None
+
+    # -- stopping ------------------------------------------------------------------------------
 
     def _close_probe(self) -> None:
         if self._probe is not None:
@@ -422,13 +384,4 @@ class LaunchHandle:
             )
 
 
-def format_items(target: str, file: str | None, args: Mapping[str, object] | None) -> list[str]:
-    """``launchkit run`` positional items: ``[PKG] FILE name:=value ...``."""
-    items = [target] if file is None else [target, file]
-    for name, value in (args or {}).items():
-        text = ("true" if value else "false") if isinstance(value, bool) else str(value)
-        items.append(f"{name}:={text}")
-    return items
-
-
-__all__ = ["LaunchHandle", "LaunchTestError", "format_items"]
+__all__ = ["LaunchHandle", "LaunchTestError"]

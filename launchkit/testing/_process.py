@@ -2,22 +2,40 @@
 
 from __future__ import annotations
 
-from typing import TYPE_CHECKING
+from collections.abc import Callable
+from typing import Protocol, TypeVar
 
 from launchkit.testing._errors import LaunchTestError
 from launchkit.testing._evidence import process_status
 from launchkit.testing._matchers import Matcher, compile_matcher
-from launchkit.testing._state import ProcessRecord
+from launchkit.testing._state import LaunchState, ProcessRecord
+from launchkit.testing._waits import Impossible
 
-if TYPE_CHECKING:
-    from launchkit.testing._handle import LaunchHandle
+T = TypeVar("T")
+
+
+class LaunchView(Protocol):
+    """What a process handle uses of its launch (:class:`launchkit.testing.LaunchHandle`)."""
+
+    title: str
+    state: LaunchState
+
+    def process_names(self) -> str:
+        """The labels of the processes started so far."""
+
+    def wait_for(
+        self,
+        what: str,
+        timeout: float,
+        check: Callable[[], T | None],
+        *,
+        subject: str | None = None,
+    ) -> T:
+        """Wait until ``check()`` returns something other than None; that value."""
+
 
 DEFAULT_TIMEOUT = 10.0
 STREAMS = ("any", "stdout", "stderr")
-
-
-class Impossible(Exception):
-    """Raised by a wait's check when what it awaits can no longer happen."""
 
 
 class ProcessHandle:
@@ -28,7 +46,7 @@ class ProcessHandle:
     :meth:`wait_running` waits for it; the properties raise until it has started.
     """
 
-    def __init__(self, launch: LaunchHandle, query: str) -> None:
+    def __init__(self, launch: LaunchView, query: str) -> None:
         self._launch = launch
         self.query = query
 
@@ -87,11 +105,17 @@ class ProcessHandle:
 
     @property
     def returncode(self) -> int | None:
-        """The exit code once it has exited (negative: the signal that killed it), else None."""
+        """The exit code once it has exited (negative: the signal that killed it), else None.
+
+        Reading an exit code takes note of it: the exit then no longer fails the test.
+        """
         __tracebackhide__ = True
         with self._launch.state.condition:
             record = self._started()
-            return None if record.running else record.returncode
+            if record.running or record.returncode is None:
+                return None
+            record.noted = True
+            return record.returncode
 
     @property
     def running(self) -> bool:
@@ -160,19 +184,17 @@ class ProcessHandle:
                 raise Impossible(f"process {record.label} {process_status(record)}{where}")
             return None
 
-        # Its own death does not fail the wait: a line it printed before dying still counts,
-        # and a line it never printed is reported by ``check`` as impossible.
+        # a line it printed before dying still counts; a line it never printed is reported by
+        # ``check`` as impossible once it has exited
         return self._launch.wait_for(
-            f"{words} from process '{self.query}'{where}",
-            timeout,
-            check,
-            exempt=self.query,
+            f"{words} from process '{self.query}'{where}", timeout, check, subject=self.query
         )
 
     def wait_exit(self, timeout: float = DEFAULT_TIMEOUT) -> int:
         """Wait until the process exits; its exit code (negative: killed by that signal).
 
-        Its exit is then expected: later waits do not report it as an unexpected death.
+        This takes note of its exit: it is then neither named as a likely cause of later
+        failures nor fails the test at teardown.
         """
         __tracebackhide__ = True
 
@@ -180,9 +202,9 @@ class ProcessHandle:
             record = self._find()
             if record is None or record.running or record.returncode is None:
                 return None
-            record.acknowledged = True
+            record.noted = True
             return record.returncode
 
         return self._launch.wait_for(
-            f"process '{self.query}' to exit", timeout, check, exempt=self.query
+            f"process '{self.query}' to exit", timeout, check, subject=self.query
         )

@@ -3,7 +3,6 @@
 from __future__ import annotations
 
 from collections.abc import Collection, Mapping
-from dataclasses import dataclass, field
 
 from launchkit.runtime.process import describe_exit
 from launchkit.testing._errors import ExitCodeMismatch
@@ -16,14 +15,34 @@ def _describe(code: int | None) -> str:
     return "no exit reported" if code is None else describe_exit(code)
 
 
-@dataclass
 class LaunchResult:
-    """A stopped launch: exit codes by process name, the launcher's status, every line."""
+    """A stopped launch: exit codes by process name, the launcher's status, every line.
 
-    exit_codes: dict[str, int | None]
-    returncode: int | None  # the launcher's own exit status
-    output: dict[str, list[str]] = field(default_factory=dict)
-    evidence: str = ""  # the processes and their last lines, for failure messages
+    Reading :attr:`exit_codes` (or calling :meth:`assert_exit_codes`) takes note of every
+    exit: a process that died unexpectedly then no longer fails the test at teardown.
+    """
+
+    def __init__(
+        self,
+        exit_codes: dict[str, int | None],
+        returncode: int | None,
+        output: dict[str, list[str]] | None = None,
+        evidence: str = "",
+    ) -> None:
+        self._exit_codes = exit_codes
+        self.returncode = returncode  # the launcher's own exit status
+        self.output = output or {}  # every line of every process, by label
+        self.evidence = evidence  # the processes and their last lines, for failure messages
+        self.noted = False  # the test looked at the exit codes
+
+    def __repr__(self) -> str:
+        return f"LaunchResult(exit_codes={self._exit_codes!r}, returncode={self.returncode!r})"
+
+    @property
+    def exit_codes(self) -> dict[str, int | None]:
+        """Exit codes by process name (by label where names repeat); None: still running."""
+        self.noted = True
+        return self._exit_codes
 
     @classmethod
     def of(cls, state: LaunchState, returncode: int | None, evidence: str) -> LaunchResult:
@@ -48,14 +67,15 @@ class LaunchResult:
         signal that killed the process (``-2``: SIGINT). Unknown names are an error.
         """
         __tracebackhide__ = True
-        unknown = [name for name in expected if name != "*" and name not in self.exit_codes]
+        self.noted = True
+        unknown = [name for name in expected if name != "*" and name not in self._exit_codes]
         if unknown:
             raise ExitCodeMismatch(
                 f"assert_exit_codes names no process of the launch: {', '.join(unknown)} "
-                f"(the processes are: {', '.join(self.exit_codes) or 'none'})"
+                f"(the processes are: {', '.join(self._exit_codes) or 'none'})"
             )
         wrong: list[str] = []
-        for name, code in self.exit_codes.items():
+        for name, code in self._exit_codes.items():
             accepted = expected.get(name, expected.get("*"))
             if accepted is None:
                 continue

@@ -29,12 +29,13 @@ class ProcessRecord:
     cmd: list[str]
     respawn: bool
     escalation: float  # sigterm_timeout + sigkill_timeout: the launcher's worst stop time
+    required: bool = False  # on_exit="shutdown": its end ends the launch
     pids: list[int] = field(default_factory=list)
     running: bool = False
     returncode: int | None = None
     exited_while_stopping: bool = False  # the launch was shutting down when it exited
     stop_requested: bool = False  # the launcher is stopping this process alone
-    acknowledged: bool = False  # a wait_exit took note of its exit
+    noted: bool = False  # the test took note of its exit (wait_exit, returncode)
     lines: list[OutputLine] = field(default_factory=list)
 
     @property
@@ -47,12 +48,13 @@ class ProcessRecord:
         return query in (self.label, self.name, self.node)
 
     def died_unexpectedly(self) -> bool:
-        """A non-zero exit nobody asked for or awaited (respawning processes may die)."""
+        """A non-zero exit (or a signal) nobody asked for: not while the launch or the launcher
+        was stopping it, and not of a respawning process (those may die). Whether the test took
+        note of it is :attr:`noted`."""
         return (
             not self.running
             and self.returncode not in (None, 0)
             and not self.exited_while_stopping
-            and not self.acknowledged
             and not self.respawn
         )
 
@@ -96,6 +98,7 @@ class LaunchState:
                     node=event.get("node"),
                     cmd=[str(word) for word in event["cmd"]],
                     respawn=bool(event.get("respawn")),
+                    required=bool(event.get("required")),
                     escalation=float(event.get("sigterm_timeout", 5.0))
                     + float(event.get("sigkill_timeout", 5.0)),
                 )
@@ -103,7 +106,7 @@ class LaunchState:
             record.pids.append(int(event["pid"]))
             record.running = True
             record.returncode = None
-            record.acknowledged = False
+            record.noted = False
             record.stop_requested = False
         elif kind == "exited":
             record = self.processes.get(str(event["process"]))

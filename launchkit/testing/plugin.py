@@ -20,10 +20,12 @@ _LAUNCHES = pytest.StashKey[set[LaunchHandle]]()
 
 
 def _factory(request: pytest.FixtureRequest, tmp: pytest.TempPathFactory) -> LaunchFactory:
+    session = request.session
     return LaunchFactory(
         Path(request.path).parent,
         lambda: tmp.mktemp("launch", numbered=True),
         request.config.stash.setdefault(_LAUNCHES, set()),
+        lambda: int(session.testsfailed),
     )
 
 
@@ -31,7 +33,8 @@ def _factory(request: pytest.FixtureRequest, tmp: pytest.TempPathFactory) -> Lau
 def launch(
     request: pytest.FixtureRequest, tmp_path_factory: pytest.TempPathFactory
 ) -> Iterator[LaunchFactory]:
-    """Start launches for one test; they are stopped, and checked for survivors, after it."""
+    """Start launches for one test; they are stopped, and checked for survivors and for deaths
+    the test never took note of, after it."""
     factory = _factory(request, tmp_path_factory)
     yield factory
     factory.stop_all()

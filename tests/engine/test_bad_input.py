@@ -83,14 +83,40 @@ def test_bad_launch_file(tmp_path: Path, case: str) -> None:
     assert not marker.exists(), "a process started although the file is bad"
 
 
-def test_error_in_included_file_names_that_file(tmp_path: Path) -> None:
+def test_error_in_included_file_shows_the_include_chain(tmp_path: Path) -> None:
     child = tmp_path / "child.launch.xml"
     child.write_text("<launch>\n\n  <lg/>\n</launch>")
     parent = tmp_path / "parent.launch.xml"
     parent.write_text('<launch><include file="$(dirname)/child.launch.xml"/></launch>')
     result = launchkit("check", str(parent), cwd=tmp_path)
     assert result.returncode == 2
-    assert result.stderr.startswith(f"{child}:3:3: error: unknown tag <lg>")
+    assert result.stderr.startswith(f"{parent}:1:9 -> {child}:3:3: error: unknown tag <lg>")
+
+
+def test_runtime_error_in_included_files_shows_the_include_chain(tmp_path: Path) -> None:
+    (tmp_path / "c.launch.py").write_text(
+        "from launch import LaunchDescription\n"
+        "from launch.actions import ExecuteProcess\n"
+        "from launch.substitutions import LaunchConfiguration\n\n\n"
+        "def generate_launch_description():\n"
+        "    return LaunchDescription([\n"
+        "        ExecuteProcess(cmd=['echo', LaunchConfiguration('nope')]),\n"
+        "    ])\n"
+    )
+    (tmp_path / "b.launch.xml").write_text(
+        '<launch>\n  <let name="f" value="$(dirname)/c.launch.py"/>\n'
+        '  <include file="$(var f)"/>\n</launch>'  # known only when it runs
+    )
+    (tmp_path / "a.launch.xml").write_text(
+        '<launch>\n  <include file="$(dirname)/b.launch.xml"/>\n</launch>'
+    )
+    for command in (["run"], ["run", "--print"], ["check"]):
+        result = launchkit(command[0], str(tmp_path / "a.launch.xml"), *command[1:], cwd=tmp_path)
+        assert result.returncode == 2, result.stderr
+        chain = f"{tmp_path}/a.launch.xml:2:3 -> {tmp_path}/b.launch.xml:3:3 -> "
+        assert f"{chain}{tmp_path}/c.launch.py:8: error: launch configuration 'nope'" in (
+            result.stderr
+        )
 
 
 @pytest.fixture

@@ -55,6 +55,107 @@ def test_show_args_lists_defaults_descriptions_and_choices(tmp_path: Path) -> No
     assert "'robot':" in result.stdout and "(required)" in result.stdout
 
 
+def test_show_args_lists_the_arguments_of_included_files(tmp_path: Path) -> None:
+    (tmp_path / "world.launch.xml").write_text(
+        '<launch><arg name="world" default="empty" description="the world"/>'
+        '<arg name="mode" default="other"/></launch>'
+    )
+    (tmp_path / "top.launch.xml").write_text(
+        '<launch><arg name="mode" default="sim"/><arg name="sim" default="true"/>'
+        '<group if="$(var sim)"><include file="$(dirname)/world.launch.xml"/></group></launch>'
+    )
+    result = launchkit("run", str(tmp_path / "top.launch.xml"), "--show-args", cwd=tmp_path)
+    assert result.returncode == 0, result.stderr
+    out = result.stdout
+    # as ros2 launch --show-args: the included file's too, the first declaration of a name wins
+    assert out.index("'mode':") < out.index("'sim':") < out.index("'world':")
+    assert out.count("'mode':") == 1 and "(default: 'sim')" in out
+    world = ["'world':", "the world", "(default: 'empty')", "(declared conditionally)"]
+    assert "\n        ".join(world) in out
+
+
+# what `run` refuses before starting anything; `run --print` and `check` must refuse it too
+REFUSED = {
+    "undefined configuration": ('<executable cmd="echo $(var nope)"/>', "2:23", "'nope'"),
+    "missing params file": (
+        '<node pkg="robot_state_publisher" exec="robot_state_publisher">'
+        '<param from="/no/such.yaml"/></node>',
+        "2:64",
+        "parameter file '/no/such.yaml' does not exist",
+    ),
+    "program not found": (
+        '<let name="d" value="$(command \'xacro-not-installed x.xacro\')"/>',
+        "2:22",
+        "could not run",
+    ),
+    "bad if value": (
+        '<arg name="x" default="maybe"/><group if="$(var x)"/>',
+        "2:43",
+        "invalid if condition 'maybe'",
+    ),
+    "unknown package": ('<node pkg="no_such_pkg" exec="x"/>', "2:1", "package 'no_such_pkg'"),
+}
+
+
+@pytest.mark.parametrize("case", sorted(REFUSED))
+@pytest.mark.parametrize("command", [["run", "--print"], ["check"]])
+def test_print_and_check_refuse_what_run_refuses(
+    tmp_path: Path, case: str, command: list[str]
+) -> None:
+    body, where, what = REFUSED[case]
+    path = tmp_path / "bad.launch.xml"
+    path.write_text(f"<launch>\n{body}\n</launch>\n")
+    result = launchkit(command[0], str(path), *command[1:], cwd=tmp_path)
+    assert result.returncode == 2, (result.stdout, result.stderr)
+    assert result.stderr.startswith(f"{path}:{where}: error: "), result.stderr
+    assert what in result.stderr
+    assert "Traceback" not in result.stderr
+
+
+def test_check_says_what_it_did_not_check(tmp_path: Path) -> None:
+    path = tmp_path / "a.launch.xml"
+    path.write_text(
+        '<launch><arg name="sim" default="false"/><executable cmd="true"/>'
+        '<group if="$(var sim)"><node pkg="no_such_pkg" exec="x"/></group></launch>'
+    )
+    result = launchkit("check", str(path), cwd=tmp_path)
+    assert result.returncode == 0, result.stderr
+    assert result.stdout.splitlines() == [
+        f"{path}: ok (1 file(s), 4 entities; with these arguments it starts 1 process(es))",
+        "not checked: what an if/unless that is false with these arguments would include or "
+        "start (pass other arguments to check it)",
+    ]
+    checked = launchkit("check", str(path), "sim:=true", cwd=tmp_path)
+    assert checked.returncode == 2 and "package 'no_such_pkg' not found" in checked.stderr
+
+
+def test_run_pkg_executable_says_to_use_exec(tmp_path: Path) -> None:
+    result = launchkit("run", "robot_state_publisher", "robot_state_publisher", cwd=tmp_path)
+    assert result.returncode == 2
+    assert result.stderr.startswith(
+        "error: 'robot_state_publisher' is an executable of package 'robot_state_publisher', "
+        "not a launch file"
+    )
+    assert "launchkit exec robot_state_publisher robot_state_publisher" in result.stderr
+
+
+@pytest.mark.parametrize(
+    ("argv", "usage"),
+    [
+        (["run", "--bogus", "a.launch.xml"], "usage: launchkit run "),
+        (["pkg", "list", "--bogus"], "usage: launchkit pkg list "),
+        (["topic", "echo", "--bogus", "/x"], "usage: launchkit topic echo "),
+    ],
+)
+def test_an_unknown_option_shows_the_subcommands_usage(
+    tmp_path: Path, argv: list[str], usage: str
+) -> None:
+    result = launchkit(*argv, cwd=tmp_path)
+    assert result.returncode == 2
+    assert result.stderr.startswith(usage), result.stderr
+    assert "error: unrecognized arguments: --bogus" in result.stderr
+
+
 def test_pkg_commands_know_the_robot_package(tmp_path: Path) -> None:
     listed = launchkit("pkg", "list", cwd=tmp_path)
     assert "robot_wheel" in listed.stdout.split()

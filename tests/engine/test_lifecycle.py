@@ -199,3 +199,41 @@ def test_escalate_until_exited_stops_at_the_first_signal_that_works(
     assert escalate_until_exited(ROS, sent.append, wait_exit) == expected
     assert sent == expected
     assert waits == [5.0, 2.0, None][: len(expected)]
+
+
+def test_quick_exits_back_off_doubling_up_to_the_maximum() -> None:
+    # ROS respawns a program that fails at once in a busy loop (~825 starts a second)
+    policy = RespawnPolicy(enabled=True, delay=0.0, backoff_first=0.1, backoff_max=1.0)
+    lifecycle = Lifecycle(ROS, policy)
+    now, waits = 0.0, []
+    for _ in range(6):
+        lifecycle.started(now)
+        outcome = lifecycle.exited(1, now + 0.01)
+        assert outcome.respawn_in is not None
+        waits.append(outcome.respawn_in)
+        now = lifecycle.deadline or 0.0
+        assert lifecycle.due(now) == Respawn()
+    assert waits == [0.1, 0.2, 0.4, 0.8, 1.0, 1.0]
+    assert lifecycle.quick_exits == 6
+
+
+def test_a_long_run_resets_the_backoff_and_a_longer_delay_wins() -> None:
+    lifecycle = Lifecycle(ROS, RespawnPolicy(enabled=True, delay=0.5, quick_exit=1.0))
+    lifecycle.started(0.0)
+    assert lifecycle.exited(1, 0.1).respawn_in == 0.5  # 0.1 s of backoff < the delay
+    lifecycle.started(1.0)
+    assert lifecycle.exited(1, 1.1).respawn_in == 0.5
+    lifecycle.started(2.0)
+    assert lifecycle.exited(1, 2.2).respawn_in == 0.5
+    lifecycle.started(3.0)
+    assert lifecycle.exited(1, 3.1).respawn_in == 0.8  # fourth quick exit: 0.1 * 2**3
+    lifecycle.started(4.0)
+    outcome = lifecycle.exited(1, 9.0)  # ran 5 s: not a quick exit
+    assert (outcome.respawn_in, outcome.quick_exits) == (0.5, 0)
+
+
+def test_without_a_start_time_there_is_no_backoff() -> None:
+    lifecycle = Lifecycle(ROS, RespawnPolicy(enabled=True, delay=0.0))
+    for now in (0.0, 0.01, 0.02):
+        lifecycle.started()
+        assert lifecycle.exited(1, now).respawn_in == 0.0

@@ -27,7 +27,7 @@ def test_output_lines_and_exit_codes(launch, tmp_path: Path) -> None:  # type: i
     )
     second = handle.process("second")
     second.wait_output("two")
-    assert second.wait_exit() == 3  # acknowledged: its death no longer fails other waits
+    assert second.wait_exit() == 3  # noted: its death is expected
     assert handle.process("first").wait_output("one") == "one"
     assert handle.process("first").wait_exit() == 0
     handle.stop().assert_exit_codes({"first": 0, "second": 3})

@@ -338,7 +338,7 @@ def test_parameter_typing_follows_launch_ros(
     ).processes[0]  # fmt: skip
     assert params_of(spec.cmd) == {
         "as_text": "5", "number": 5, "ratio": 0.5, "flag": True, "forced": "7", "joined": "a7",
-        "names": ["x7", "y"], "floats": [1.0, 2.5], "nested": {"inner": True}, "who": "me",
+        "names": ["x7", "y"], "floats": [1.0, 2.5], "nested.inner": True, "who": "me",
     }  # fmt: skip
 
 

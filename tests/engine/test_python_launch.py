@@ -185,3 +185,33 @@ def test_ament_index_lookups(
     )
     python_prefix = PackageIndex().find("robot_wheel").prefix  # a Python package's own prefix
     assert found.messages() == [str(prefix / "share" / "amentpkg"), str(prefix), str(python_prefix)]
+
+
+def test_node_parameters_keep_their_order(evaluate_xml: EvaluateXml, tmp_path: Path) -> None:
+    share = tmp_path / "share"
+    share.mkdir()
+    (tmp_path / "a.yaml").write_text("/**:\n  ros__parameters:\n    rate: 5.0\n")
+    (tmp_path / "b.yaml").write_text("/**:\n  ros__parameters:\n    rate: 9.0\n")
+    packages = PackageIndex(
+        ament_prefix_path="",
+        python_packages={"demo": PythonPackage("demo", share, {"talker": "demo.talker"})},
+    )
+    code = f"""
+from launch import LaunchDescription
+from launch_ros.actions import Node
+
+
+def generate_launch_description():
+    return LaunchDescription([
+        Node(package='demo', executable='talker', name='n',
+             parameters=[{str(tmp_path / "a.yaml")!r}, {{'rate': 7.0, 'w': {{'r': 1}}}},
+                         {str(tmp_path / "b.yaml")!r}, {{'late': True}}]),
+    ])
+"""
+    (spec,) = evaluate_xml(code, name="order.launch.py", packages=packages).processes
+    ros = spec.cmd[spec.cmd.index("--ros-args") + 1 :]
+    files = [ros[i + 1] for i, arg in enumerate(ros) if arg == "--params-file"]
+    # one params file per dict, between the files, as launch_ros passes them
+    assert files[0] == str(tmp_path / "a.yaml") and files[2] == str(tmp_path / "b.yaml")
+    assert Path(files[1]).read_text() == ("/**:\n  ros__parameters:\n    rate: 7.0\n    w.r: 1\n")
+    assert Path(files[3]).read_text() == "/**:\n  ros__parameters:\n    late: true\n"

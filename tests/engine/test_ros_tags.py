@@ -75,7 +75,9 @@ def test_node_ros_args_attribute(evaluate_xml: EvaluateXml, packages: PackageInd
     assert spec.cmd[3:] == ["--ros-args", "--log-level", "debug", "--ros-args"]
 
 
-def test_params_become_a_ros_params_file(evaluate_xml: EvaluateXml, packages: PackageIndex) -> None:
+def test_each_param_becomes_a_ros_params_file(
+    evaluate_xml: EvaluateXml, packages: PackageIndex
+) -> None:
     xml = """<launch>
       <node pkg="demo" exec="talker" name="n">
         <param name="rate" value="10"/>
@@ -90,24 +92,68 @@ def test_params_become_a_ros_params_file(evaluate_xml: EvaluateXml, packages: Pa
       </node>
     </launch>"""
     spec = evaluate_xml(xml, packages=packages).processes[0]
-    files = params_files(spec.cmd)
-    assert len(files) == 7  # one file per <param>, in document order, as launch_ros does
-    content: dict[str, dict[str, dict[str, object]]] = {"/**": {"ros__parameters": {}}}
-    for document in files:
-        content["/**"]["ros__parameters"].update(document["/**"]["ros__parameters"])  # type: ignore[index]
-    assert content == {
-        "/**": {
-            "ros__parameters": {
-                "rate": 10,
-                "scale": 0.5,
-                "enabled": True,
-                "label": "10",
-                "list": [1, 2, 3],
-                "words": ["a", "b"],
-                "wheel": {"radius": 0.1},
-            }
-        }
+    # one file per <param>, in document order, nested names dotted: as launch_ros writes them
+    assert params_files(spec.cmd) == [
+        {"/**": {"ros__parameters": values}}
+        for values in (
+            {"rate": 10},
+            {"scale": 0.5},
+            {"enabled": True},
+            {"label": "10"},
+            {"list": [1, 2, 3]},
+            {"words": ["a", "b"]},
+            {"wheel.radius": 0.1},
+        )
+    ]
+
+
+def test_parameters_keep_launch_ros_order_and_precedence(
+    evaluate_xml: EvaluateXml, packages: PackageIndex, tmp_path: Path
+) -> None:
+    from launchkit.ros.arguments import parse_ros_args
+    from launchkit.ros.params import overrides_for
+
+    (tmp_path / "rate.yaml").write_text("/**:\n  ros__parameters:\n    rate: 5.0\n    n: 1\n")
+    (tmp_path / "global.yaml").write_text("/**:\n  ros__parameters:\n    g: 0\n    n: 0\n")
+    xml = f"""<launch>
+      <arg name="rate" default="1.0"/>
+      <set_parameter name="g" value="1"/>
+      <set_parameters_from_file filename="{tmp_path}/global.yaml"/>
+      <set_parameter name="h" value="two"/>
+      <node pkg="demo" exec="talker" name="n" namespace="ns" ros_args="--log-level warn">
+        <param from="{tmp_path}/rate.yaml"/>
+        <param name="rate" value="$(var rate)"/>
+      </node>
+    </launch>"""
+    spec = evaluate_xml(xml, {"rate": "7.0"}, packages=packages).processes[0]
+    generated = spec.cmd[-1]
+    # launch_ros jazzy's sequence (checked with the real stack, ros2 launch):
+    assert spec.cmd[3:] == [
+        "--ros-args",
+        "--log-level",
+        "warn",
+        "--ros-args",
+        "-r",
+        "__node:=n",
+        "-r",
+        "__ns:=/ns",
+        "-p",
+        "g:=1",
+        "--params-file",
+        f"{tmp_path}/global.yaml",
+        "-p",
+        "h:=two",
+        "--params-file",
+        f"{tmp_path}/rate.yaml",
+        "--params-file",
+        generated,
+    ]
+    assert yaml.safe_load(Path(generated).read_text()) == {
+        "/ns/n": {"ros__parameters": {"rate": 7.0}}
     }
+    # what the node then sees: the launch argument, given after the YAML file, wins
+    seen = overrides_for(parse_ros_args(spec.cmd), "n", "/ns/n")
+    assert seen == {"g": 0, "n": 1, "h": "two", "rate": 7.0}  # global.yaml came after g:=1
 
 
 def test_param_from_yaml_file(
@@ -158,9 +204,11 @@ def test_set_parameter_set_remap_and_use_sim_time(
     </launch>"""
     result = evaluate_xml(xml, packages=packages)
     inside = result.process("inside").cmd
-    # set_use_sim_time is the launch's own clock in ROS 2 Jazzy, not the nodes' parameter
+    # as ros2 launch writes global parameters (True, not true); <set_use_sim_time>, which
+    # Jazzy cannot run, is one more for the nodes
     assert ros_args(inside) == [
-        "-p", "use_sim_time:=False", "-p", "robot:=wheel", "-r", "scan:=/base_scan",
+        "-p", "use_sim_time:=False", "-p", "use_sim_time:=True", "-p", "robot:=wheel",
+        "-r", "scan:=/base_scan",
     ]  # fmt: skip
     assert result.process("outside").cmd[3:] == ["--ros-args"]
 
@@ -192,3 +240,20 @@ def test_param_needs_name_or_from(evaluate_xml: EvaluateXml, packages: PackageIn
             '<launch><node pkg="demo" exec="talker"><param value="1"/></node></launch>',
             packages=packages,
         )
+
+
+def test_a_param_value_that_is_not_yaml_says_to_pass_it_as_text(
+    evaluate_xml: EvaluateXml, packages: PackageIndex
+) -> None:
+    xml = """<launch><node pkg="demo" exec="talker">
+      <param name="description" value="a: b: c"/>
+    </node></launch>"""
+    with pytest.raises(Exception, match="is not valid YAML") as caught:
+        evaluate_xml(xml, packages=packages)
+    assert caught.value.format().endswith(  # type: ignore[attr-defined]
+        """error: parameter value 'a: b: c' is not valid YAML (expected a YAML value, or """
+        """type="str" to pass it as text)"""
+    )
+    text = xml.replace('value="a: b: c"', 'value="a: b: c" type="str"')
+    (spec,) = evaluate_xml(text, packages=packages).processes
+    assert params_files(spec.cmd) == [{"/**": {"ros__parameters": {"description": "a: b: c"}}}]

@@ -81,6 +81,21 @@ def test_command_exit_status_fails_in_every_mode(evaluate_xml: EvaluateXml, on_s
         )
 
 
+def test_a_failing_command_is_quoted_by_its_last_error_lines(
+    evaluate_xml: EvaluateXml, tmp_path: Path
+) -> None:
+    script = tmp_path / "gen.py"
+    script.write_text("def deep(n):\n    return deep(n - 1) if n else 1 / 0\n\ndeep(20)\n")
+    with pytest.raises(LaunchkitError) as caught:
+        say(evaluate_xml, f"$(command '{sys.executable} {script}')")
+    message = caught.value.format()
+    lines = message.splitlines()
+    assert "failed with exit code 1; the last 4 of its" in lines[0]
+    assert len(lines) == 5  # the headline and 4 quoted lines, not the whole traceback
+    assert lines[-1] == "  | ZeroDivisionError: division by zero"
+    assert "Traceback (most recent call last)" not in message
+
+
 def test_command_of_missing_program_fails(evaluate_xml: EvaluateXml) -> None:
     with pytest.raises(LaunchkitError, match="no-such-program"):
         say(evaluate_xml, "$(command 'no-such-program-xyz')")

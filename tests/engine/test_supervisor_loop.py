@@ -58,7 +58,7 @@ class FakeProcess:
         self.incarnations += 1
         self.code = None
 
-    def read(self, fd: int) -> tuple[list[str], bool]:
+    def read(self, fd: int, limit: int = 0) -> tuple[list[str], bool]:
         raise AssertionError("a fake process has no streams")
 
     def close_stream(self, fd: int) -> None:

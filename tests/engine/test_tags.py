@@ -78,6 +78,50 @@ def test_group_without_forwarding_keeps_only_kept_names(evaluate_xml: EvaluateXm
     assert evaluate_xml(xml).messages() == ["AC", "b is not forwarded"]
 
 
+def test_group_without_forwarding_starts_from_the_launch_environment(
+    evaluate_xml: EvaluateXml,
+) -> None:
+    # As ROS's GroupAction: the environment is reset to what the launch began with, the
+    # <keep>s are evaluated after that reset, and the group's own changes stay inside it
+    # (compared with the real Jazzy stack).
+    xml = """<launch>
+      <set_env name="OUTER" value="set before"/>
+      <group forwarding="false">
+        <keep name="k" value="$(env OUTER 'unset')"/>
+        <set_env name="INNER" value="x"/>
+        <log message="in: $(env OUTER 'unset') $(env BASE) k=$(var k)"/>
+        <executable cmd="true" name="inside"/>
+      </group>
+      <log message="out: $(env OUTER 'unset') $(env INNER 'unset')"/>
+    </launch>"""
+    result = evaluate_xml(xml, env={"BASE": "base"})
+    assert result.messages() == ["in: unset base k=unset", "out: set before unset"]
+    assert "OUTER" not in result.process("inside").env
+
+
+def test_group_keeps_are_lets_when_forwarding_or_unscoped(evaluate_xml: EvaluateXml) -> None:
+    # ROS accepts <keep> in any group: inside a forwarding scoped group it sets the
+    # configuration for the scope; an unscoped group ignores forwarding="false" and its
+    # <keep>s leak like <let>s.
+    xml = """<launch>
+      <let name="a" value="A"/>
+      <set_env name="OUTER" value="o"/>
+      <group><keep name="k" value="kept"/><log message="$(var k) $(var a)"/></group>
+      <log message="after: $(var k 'none')"/>
+      <group scoped="false" forwarding="false">
+        <keep name="k3" value="kept3"/>
+        <log message="$(var a) $(env OUTER) $(var k3)"/>
+      </group>
+      <log message="after: $(var k3)"/>
+    </launch>"""
+    assert evaluate_xml(xml).messages() == [
+        "kept A",
+        "after: none",
+        "A o kept3",
+        "after: kept3",
+    ]
+
+
 def test_group_if_and_unless(evaluate_xml: EvaluateXml) -> None:
     xml = """<launch>
       <arg name="on" default="true"/>

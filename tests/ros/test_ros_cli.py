@@ -106,6 +106,10 @@ def test_interface_show() -> None:
     assert twist.stdout.startswith("Vector3  linear\n\tfloat64 x\n")
     srv = launchkit("interface", "show", "gazebo_msgs/srv/DeleteEntity")
     assert srv.stdout == "string name\n---\nbool success\nstring status_message\n"
+    # an empty request is empty, as ros2 interface show prints it (no rosidl placeholder)
+    trigger = launchkit("interface", "show", "std_srvs/srv/Trigger")
+    assert trigger.stdout == "---\nbool success\nstring message\n"
+    assert launchkit("interface", "show", "std_msgs/msg/Empty").stdout == ""
     bad = launchkit("interface", "show", "nope_msgs/msg/X")
     assert bad.returncode == 2 and "unknown message type" in bad.stderr
 
@@ -134,3 +138,16 @@ def test_echo_latched_topic_hz_and_lists(talker: Child, children: list[Child]) -
     line = hz.expect("average rate:", timeout=15)
     assert float(line.split(":")[1]) > 0  # no timing asserts: the rate itself is load-dependent
     assert hz.stop() == 0
+
+
+def test_topic_list_shows_topics_of_hidden_nodes_but_not_hidden_topics(
+    router_endpoint: str, children: list[Child]
+) -> None:
+    # `launchkit topic pub` publishes from a hidden node (_launchkit_cli_PID)
+    for topic in ("/from_cli", "/_hidden/data"):
+        pub = Child(["-m", "launchkit", "topic", "pub", topic, "std_msgs/msg/String", "{}"])
+        children.append(pub)
+        pub.expect("publishing #1", timeout=30)
+    listed = launchkit("topic", "list").stdout.split()
+    assert "/from_cli" in listed and "/_hidden/data" not in listed
+    assert "/_hidden/data" in launchkit("topic", "list", "-a").stdout.split()

@@ -81,3 +81,38 @@ def test_log_level_from_ros_args(
     assert "not shown" not in err
     assert "[WARN]" in err and "[quiet]: shown" in err
     assert err.count("once") == 1
+
+
+def test_warnings_are_coloured_on_a_terminal_only() -> None:
+    import os
+    import pty
+    import subprocess
+    import sys
+
+    code = (
+        "from launchkit.ros.logging import get_logger; "
+        "get_logger('n').warn('careful'); get_logger('n').info('fine')"
+    )
+    env = {k: v for k, v in os.environ.items() if k != "RCUTILS_COLORIZED_OUTPUT"}
+    ours, theirs = pty.openpty()
+    with os.fdopen(ours, "rb", buffering=0) as terminal:
+        subprocess.run([sys.executable, "-c", code], stderr=theirs, env=env, timeout=60, check=True)
+        os.close(theirs)
+        seen = b""
+        while b"fine" not in seen:
+            seen += terminal.read(4096)
+    warn, info = seen.decode().splitlines()[:2]
+    assert warn.startswith("\x1b[33m[WARN] ") and warn.endswith("careful\x1b[0m")
+    assert info.startswith("[INFO] ")  # as rcutils: info stays plain
+    piped = subprocess.run(
+        [sys.executable, "-c", code], capture_output=True, text=True, env=env, timeout=60
+    )
+    assert piped.stderr.startswith("[WARN] ") and "\x1b" not in piped.stderr
+    forced = subprocess.run(
+        [sys.executable, "-c", code],
+        capture_output=True,
+        text=True,
+        env={**env, "RCUTILS_COLORIZED_OUTPUT": "1"},
+        timeout=60,
+    )
+    assert forced.stderr.startswith("\x1b[33m[WARN] ")

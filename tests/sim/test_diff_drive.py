@@ -142,3 +142,17 @@ def test_geometry_warnings_name_the_seed_inversions() -> None:
     warnings = wheel_geometry_warnings(-0.25, 0.25, (0, -1, 0), (0, -1, 0))
     assert len(warnings) == 3
     assert wheel_geometry_warnings(0.25, -0.25, (0, 1, 0), (0, 1, 0)) == []
+
+
+@pytest.mark.parametrize("bad", [math.nan, math.inf, -math.inf])
+def test_a_non_finite_command_is_refused_and_the_last_one_stays(bad: float) -> None:
+    ctl = DiffDriveController(
+        DiffDriveParams.from_tags(dict(SEED_TAGS, max_wheel_acceleration="0"))
+    )
+    assert ctl.set_command(0.3, 0.0)
+    assert not ctl.set_command(bad, 0.0) and not ctl.set_command(0.0, bad)
+    update = ctl.update(0.1, (0.0, 0.0), AT_REST)
+    assert update is not None
+    assert update.command.velocities == pytest.approx(
+        {"wheel_left_joint": 2.0, "wheel_right_joint": 2.0}
+    )

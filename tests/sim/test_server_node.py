@@ -243,6 +243,28 @@ def test_spawned_robot_publishes_drives_and_turns(probe: Node) -> None:
     assert 0.6 < math.atan2(math.sin(turned), math.cos(turned)) < 1.6
 
 
+def test_a_nan_command_is_refused_and_odometry_stays_finite(probe: Node) -> None:
+    # One NaN Twist used to reach the wheel joints: the physics, and /odom with it, stayed NaN.
+    assert spawn("nan_bot").returncode == 0
+    odom: list[Any] = []
+    probe.create_subscription(Odometry, "/odom", odom.append, 50)
+    cmd = probe.create_publisher(Twist, "/cmd_vel", 1)
+    spin_until(probe, lambda: bool(odom), 20, "/odom")
+    cmd.publish(Twist(linear=Vector3(x=math.nan), angular=Vector3(z=math.inf)))
+    sent = stamp(odom[-1])
+    spin_until(probe, lambda: stamp(odom[-1]) > sent + 1.0, 20, "1 s of odometry after NaN")
+    cmd.publish(Twist(linear=Vector3(x=0.5)))  # a good command after it still drives
+    spin_until(
+        probe, lambda: abs(odom[-1].twist.twist.linear.x) > 0.02, 20, "the robot to start moving"
+    )
+    cmd.publish(Twist())
+    for msg in odom:
+        pose, twist = msg.pose.pose, msg.twist.twist
+        values = [pose.position.x, pose.position.y, pose.orientation.z, pose.orientation.w]
+        values += [twist.linear.x, twist.angular.z]
+        assert all(math.isfinite(v) for v in values), msg
+
+
 def _quaternion(msg: Any) -> tuple[float, float, float, float]:
     q = msg.pose.pose.orientation
     return (q.x, q.y, q.z, q.w)

@@ -9,7 +9,8 @@ import pytest
 from launchkit.runtime.events import node_name
 from launchkit.testing import LaunchResult, in_order
 from launchkit.testing._matchers import compile_matcher
-from launchkit.testing._state import LaunchState
+from launchkit.testing._state import LaunchState, ProcessRecord
+from launchkit.testing._waits import AllowedExits
 
 
 def _started(label: str, pid: int, respawn: bool = False) -> dict[str, object]:
@@ -97,3 +98,26 @@ def test_in_order_matches_a_sequence_with_lines_between():
     assert fresh("start")
     with pytest.raises(ValueError, match="at least one matcher"):
         in_order()
+
+
+def test_allowed_exits_name_processes_and_codes():
+    quitter = ProcessRecord("quitter-2", "quitter", None, ["sh"], False, 10.0, returncode=3)
+    assert not AllowedExits(None).allows(quitter)
+    assert AllowedExits(["quitter"]).allows(quitter)
+    assert AllowedExits(["quitter-2"]).allows(quitter)
+    assert AllowedExits({"quitter": 3}).allows(quitter)
+    assert AllowedExits({"*": {1, 3}}).allows(quitter)
+    assert not AllowedExits({"quitter": {0, 4}}).allows(quitter)
+    assert not AllowedExits(["talker"]).allows(quitter)
+    with pytest.raises(TypeError, match="not one string"):
+        AllowedExits("quitter")
+
+
+def test_reading_exit_codes_takes_note_of_them():
+    result = LaunchResult({"quitter": 3}, 0)
+    assert not result.noted
+    assert result.exit_codes == {"quitter": 3}
+    assert result.noted
+    fresh = LaunchResult({"quitter": 3}, 0)
+    fresh.assert_exit_codes({"quitter": 3})
+    assert fresh.noted

@@ -11,7 +11,7 @@ from launchkit.description.actions.include import Include, IncludeArg
 from launchkit.description.actions.let import SetConfiguration
 from launchkit.description.actions.log import Log, Shutdown
 from launchkit.description.actions.node import ExecuteNode, Remap
-from launchkit.description.actions.parameters import ParamFile, ParamGroup, ParamValue
+from launchkit.description.actions.parameters import ParamDict, ParamFile, ParamGroup, ParamValue
 from launchkit.description.actions.ros_scope import (
     PushRosNamespace,
     SetParameter,
@@ -32,6 +32,7 @@ __all__ = [
     "IncludeArg",
     "Keep",
     "Log",
+    "ParamDict",
     "ParamFile",
     "ParamGroup",
     "ParamValue",

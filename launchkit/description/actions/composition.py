@@ -69,13 +69,15 @@ def load_request(node: ComposableNode, context: LaunchContext) -> LoadRequest | 
             request.parameters.append(Path(item))
         else:
             request.parameters.append((item[0], typed_value(item[1], None, node.location)))
-    for entry in node.params:
-        values, files = evaluate_params([entry], context)
-        request.parameters.extend(values.items())
-        request.parameters.extend(files)
+    for given in evaluate_params(node.params, context):
+        if isinstance(given, dict):
+            request.parameters.extend(given.items())
+        else:
+            request.parameters.append(given)
     plain: list[ParamEntry] = [e for e in node.extra_arguments if not isinstance(e, ParamFile)]
-    extra, _ = evaluate_params(plain, context)
-    request.extra_arguments = list(extra.items())
+    for extra in evaluate_params(plain, context):
+        assert isinstance(extra, dict)
+        request.extra_arguments.extend(extra.items())
     return request
 
 

@@ -29,8 +29,14 @@ def _kept(keeps: Sequence[Keep], context: LaunchContext) -> dict[str, str]:
 
 
 class Group(Action):
-    """Run children in a pushed scope (``scoped``), optionally starting with nothing but
-    ``<keep>``s (``forwarding="false"``)."""
+    """Run children in a pushed scope (``scoped``), optionally starting afresh
+    (``forwarding="false"``), as ROS's ``GroupAction`` does.
+
+    A scoped group that forwards sets its ``<keep>``s as configurations inside the scope; one
+    that does not forward starts from the environment the launch began with and from nothing
+    but its ``<keep>``s (evaluated after that environment reset). An unscoped group ignores
+    ``forwarding``: its ``<keep>``s are plain ``<let>``s and everything leaks.
+    """
 
     TAG = "group"
 
@@ -56,14 +62,23 @@ class Group(Action):
     def execute(self, context: LaunchContext) -> None:
         """Run the children, in a new scope when ``scoped``."""
         if not self.scoped:
+            self._set_keeps(context)
             self._run(context)
             return
         with context.scoped():
+            if self.forwarding:
+                self._set_keeps(context)
+            else:
+                context.environment.clear()
+                context.environment.update(context.initial_environment)
+                reset(context, self.keeps)
             self._run(context)
 
+    def _set_keeps(self, context: LaunchContext) -> None:
+        for keep in self.keeps:
+            context.configurations[perform(keep.name, context)] = perform(keep.value, context)
+
     def _run(self, context: LaunchContext) -> None:
-        if not self.forwarding:
-            reset(context, self.keeps)
         for action in self.actions:
             action.visit(context)
 

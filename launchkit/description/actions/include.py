@@ -9,7 +9,7 @@ from typing import TYPE_CHECKING
 
 from launchkit.description.actions.base import Action
 from launchkit.description.substitutions.base import Value, perform
-from launchkit.errors import Location, RuntimeLaunchError
+from launchkit.errors import LaunchkitError, Location, RuntimeLaunchError
 
 if TYPE_CHECKING:
     from launchkit.description.conditions import Condition
@@ -25,7 +25,11 @@ class IncludeArg:
 
 
 class Include(Action):
-    """Load FILE, set its ``<arg>`` children as configurations, and run its actions."""
+    """Load FILE, set its ``<arg>`` children as configurations, and run its actions.
+
+    ``syntax`` is None to read FILE by its suffix, ``"python"`` or ``"frontend"`` (XML or YAML)
+    when a Python launch file's description source class says which.
+    """
 
     TAG = "include"
 
@@ -35,10 +39,13 @@ class Include(Action):
         args: Sequence[IncludeArg] = (),
         location: Location | None = None,
         condition: Condition | None = None,
+        *,
+        syntax: str | None = None,
     ) -> None:
         super().__init__(location, condition)
         self.file = file
         self.args = list(args)
+        self.syntax = syntax
 
     def resolve(self, context: LaunchContext) -> Path:
         """The included file: FILE as given (relative to the CWD, as ROS), else relative to
@@ -58,14 +65,26 @@ class Include(Action):
         return path.resolve()
 
     def execute(self, context: LaunchContext) -> None:
-        """Include the file in the current scope."""
+        """Include the file in the current scope; an error inside it names this include."""
         path = self.resolve(context)
-        description = context.loader(path, self.location)
+        try:
+            description = context.loader(path, self.location, self.syntax)
+        except LaunchkitError as error:
+            self._link(error)
+            raise
         values = {arg.name: perform(arg.value, context) for arg in self.args}
         context.configurations.update(values)
         for required in description.required_arguments():
             if required.name not in context.configurations:
                 raise required.missing_error().with_location(self.location or Location(str(path)))
         with context.in_file(path):
-            for action in description.actions:
-                action.visit(context)
+            try:
+                for action in description.actions:
+                    action.visit(context)
+            except LaunchkitError as error:
+                self._link(error)
+                raise
+
+    def _link(self, error: LaunchkitError) -> None:
+        if self.location is not None:
+            error.included_from(self.location)

@@ -20,7 +20,7 @@ from __future__ import annotations
 
 import os
 from collections.abc import Sequence
-from typing import TYPE_CHECKING, Any
+from typing import TYPE_CHECKING
 
 from launchkit.description.actions.parameters import (
     ParamEntry,
@@ -28,7 +28,6 @@ from launchkit.description.actions.parameters import (
     ParamRule,
     evaluate_params,
     evaluate_value,
-    nest,
     params_file,
     typed_value,
 )
@@ -91,8 +90,10 @@ def ros_arguments(
         elif isinstance(entry, ParamRule):
             out += ["-p", parameter_rule(entry, context)]
         else:
-            values: dict[str, Any] = evaluate_params([entry], context)[0]
-            text = yaml.safe_dump({key: {"ros__parameters": nest(values)}}, sort_keys=False)
+            values = evaluate_params([entry], context)[0]
+            assert isinstance(values, dict)
+            # nested names dotted, as launch_ros writes them
+            text = yaml.safe_dump({key: {"ros__parameters": values}}, default_flow_style=False)
             path = context.write_scratch_file("launch_params_", ".yaml", text)
             files[str(path)] = text
             out += ["--params-file", str(path)]

@@ -1,4 +1,5 @@
-"""``<param>`` inside ``<node>``: values, nested groups and YAML files, and their typing."""
+"""``<param>`` inside ``<node>`` (and ``parameters=[...]`` of a Python ``Node``): values, nested
+groups and YAML files, their typing, and their order as launch_ros passes them."""
 
 from __future__ import annotations
 
@@ -55,8 +56,8 @@ class ParamFile:
 
 @dataclass
 class ParamDict:
-    """Parameters given together (a Python ``{...}`` of ``Node(parameters=[...])``): launch_ros
-    writes them to one params file. A lone ``<param>`` of XML is its own file too."""
+    """A ``parameters=[{...}]`` dict of a Python ``Node``: its values share one params file
+    (a lone ``<param>`` of XML is one file of its own too)."""
 
     entries: list[ParamValue | ParamGroup] = field(default_factory=list)
 
@@ -69,6 +70,10 @@ class ParamRule:
 
 
 ParamEntry = ParamValue | ParamGroup | ParamFile | ParamDict | ParamRule
+
+#: One item of a node's evaluated parameters: values for one generated params file (dotted
+#: names; a ParamRule's one value), or a params file passed as it is.
+NodeParams = dict[str, Any] | Path
 
 
 def typed_value(text: str, kind: str | None, location: Location | None) -> Any:
@@ -91,8 +96,15 @@ def typed_value(text: str, kind: str | None, location: Location | None) -> Any:
         if kind == "float":
             return float(text)
     except (ValueError, yaml.YAMLError):
+        shown = text if len(text) <= 60 else text[:57] + "..."
+        if kind is None or kind == "yaml":  # launch_ros refuses it too
+            raise RuntimeLaunchError(
+                f"parameter value {shown!r} is not valid YAML",
+                location,
+                expected='a YAML value, or type="str" to pass it as text',
+            ) from None
         raise RuntimeLaunchError(
-            f"parameter value {text!r} is not a {kind}", location, expected=f"a {kind} value"
+            f"parameter value {shown!r} is not a {kind}", location, expected=f"a {kind} value"
         ) from None
     raise RuntimeLaunchError(
         f"unknown parameter type {kind!r}", location, expected="one of " + ", ".join(PARAM_TYPES)
@@ -120,31 +132,31 @@ def evaluate_value(param: ParamValue, context: LaunchContext) -> Any:
     return typed_value(text, param.type, param.location)
 
 
-def evaluate_params(
-    entries: list[ParamEntry], context: LaunchContext
-) -> tuple[dict[str, Any], list[Path]]:
-    """Node parameters as a nested dict, and the YAML files to pass as ``--params-file``."""
-    values: dict[str, Any] = {}
-    files: list[Path] = []
+def evaluate_params(entries: list[ParamEntry], context: LaunchContext) -> list[NodeParams]:
+    """A node's parameters in launch_ros's order: every top-level ``<param name>`` (XML) or
+    dict (Python) is a set of values of its own (one params file each), every ``from`` file is
+    passed as it is. Later ones win, as on the command line."""
+    evaluated: list[NodeParams] = []
 
-    def visit(items: list[ParamValue | ParamGroup], prefix: str) -> None:
+    def visit(items: list[ParamValue | ParamGroup], prefix: str, values: dict[str, Any]) -> None:
         for item in items:
             name = prefix + perform(item.name, context)
             if isinstance(item, ParamGroup):
-                visit(item.children, name + ".")
+                visit(item.children, name + ".", values)
             else:
                 values[name] = evaluate_value(item, context)
 
     for entry in entries:
         if isinstance(entry, ParamFile):
-            files.append(params_file(entry, context))
-        elif isinstance(entry, ParamDict):
-            visit(entry.entries, "")
-        elif isinstance(entry, ParamRule):
-            visit([entry.param], "")
+            evaluated.append(params_file(entry, context))
+            continue
+        values: dict[str, Any] = {}
+        if isinstance(entry, ParamDict):
+            visit(entry.entries, "", values)
         else:
-            visit([entry], "")
-    return values, files
+            visit([entry.param if isinstance(entry, ParamRule) else entry], "", values)
+        evaluated.append(values)
+    return evaluated
 
 
 def params_file(entry: ParamFile, context: LaunchContext) -> Path:
@@ -161,18 +173,3 @@ def params_file(entry: ParamFile, context: LaunchContext) -> Path:
 
     text = perform(parse_value(path.read_text(), Location(str(path))), context)
     return context.write_scratch_file("params_", ".yaml", text)
-
-
-def nest(flat: dict[str, Any]) -> dict[str, Any]:
-    """``{"a.b": 1}`` -> ``{"a": {"b": 1}}`` (how ROS writes dotted names in YAML)."""
-    nested: dict[str, Any] = {}
-    for key, value in flat.items():
-        node = nested
-        *parents, leaf = key.split(".")
-        for part in parents:
-            child = node.setdefault(part, {})
-            if not isinstance(child, dict):
-                child = node[part] = {}
-            node = child
-        node[leaf] = value
-    return nested

@@ -129,18 +129,26 @@ class SetRemap(Action):
 
 
 class SetUseSimTime(Action):
-    """``<set_use_sim_time>``: in ROS 2 Jazzy it sets ``use_sim_time`` of the launch's own ROS
-    node (for ROS timers), not of the nodes it starts; launchkit's launch has no ROS timers, so
-    it only checks the value."""
+    """``<set_use_sim_time value>``: ``use_sim_time`` for every later node in scope, as a
+    global parameter. (Jazzy cannot run the tag; its Python ``SetUseSimTime`` sets only the
+    launch's own ROS clock, which the Python frontend's ``nodes=False`` follows.)"""
 
     TAG = "set_use_sim_time"
 
     def __init__(
-        self, value: Value, location: Location | None = None, condition: Condition | None = None
+        self,
+        value: Value,
+        location: Location | None = None,
+        condition: Condition | None = None,
+        *,
+        nodes: bool = True,
     ) -> None:
         super().__init__(location, condition)
         self.value = value
+        self.nodes = nodes
 
     def execute(self, context: LaunchContext) -> None:
-        """Check the value (nodes get ``use_sim_time`` from their parameters, as in ROS)."""
-        typed_bool(self.value, context, "set_use_sim_time value", self.location)
+        """Check the value; record ``use_sim_time`` as a global parameter for the nodes."""
+        value = typed_bool(self.value, context, "set_use_sim_time value", self.location)
+        if self.nodes:
+            context.scope.global_params.append(("use_sim_time", "true" if value else "false"))

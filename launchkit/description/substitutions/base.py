@@ -24,9 +24,11 @@ class Substitution:
         """How the substitution was written (for messages and ``--print``)."""
         raise NotImplementedError
 
-    def fail(self, message: str, *, expected: str | None = None) -> LaunchkitError:
-        """A runtime error located at this substitution."""
-        return RuntimeLaunchError(message, self.location, expected=expected)
+    def fail(
+        self, message: str, *, expected: str | None = None, quoted: list[str] | None = None
+    ) -> LaunchkitError:
+        """A runtime error located at this substitution (``quoted``: lines shown under it)."""
+        return RuntimeLaunchError(message, self.location, expected=expected, quoted=quoted)
 
 
 #: A value written in a launch file: literal text and substitutions, concatenated.

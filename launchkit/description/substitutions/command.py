@@ -2,7 +2,10 @@
 
 from __future__ import annotations
 
+import os
+import selectors
 import shlex
+import signal
 import subprocess
 from typing import TYPE_CHECKING
 
@@ -12,6 +15,24 @@ if TYPE_CHECKING:
     from launchkit.description.launch_context import LaunchContext
 
 ON_STDERR = ("fail", "ignore", "warn", "capture")
+QUOTED_LINES = 4  # of a failing program's stderr: its last words, not a whole traceback
+
+
+def last_words(stderr: str) -> tuple[str, list[str]]:
+    """How to show a program's stderr in an error: one line inline (``": oops"``), or the
+    last :data:`QUOTED_LINES` lines to quote under a headline that says how many there were."""
+    lines = [line.rstrip() for line in stderr.strip().splitlines() if line.strip()]
+    if not lines:
+        return "", []
+    if len(lines) == 1:
+        return f": {lines[0].strip()}", []
+    if len(lines) <= QUOTED_LINES:
+        return "; on stderr:", lines
+    return f"; the last {QUOTED_LINES} of its {len(lines)} lines on stderr:", lines[-QUOTED_LINES:]
+
+
+#: What a command may write (stdout and stderr together) before it is stopped as runaway.
+MAX_OUTPUT = 64 * 1024 * 1024
 
 
 class Command(Call):
@@ -19,6 +40,10 @@ class Command(Call):
 
     ON_STDERR says what output on stderr means: ``fail`` (default, as ROS), ``ignore``,
     ``warn`` (logged) or ``capture`` (appended to the result).
+
+    The command runs in its own process group, which is killed if the launcher is interrupted
+    while it waits (Ctrl-C, SIGTERM), if it writes more than :data:`MAX_OUTPUT`, and after it
+    exits if anything of it is left running (no orphans; ROS would leave them).
     """
 
     NAME = "command"
@@ -42,28 +67,88 @@ class Command(Call):
         if not argv:
             raise self.fail("$(command) got an empty command")
         try:
-            result = subprocess.run(
-                argv,
-                capture_output=True,
-                text=True,
-                env=dict(context.environment),
-                stdin=subprocess.DEVNULL,
-                check=False,
-            )
+            code, out, err = _run(argv, context)
         except OSError as error:
             raise self.fail(f"command {text!r} could not run: {error.strerror}") from None
-        stderr = result.stderr.strip()
-        if result.returncode != 0:
-            detail = f": {stderr}" if stderr else ""
-            raise self.fail(f"command {text!r} failed with exit code {result.returncode}{detail}")
+        if code is None:
+            raise self.fail(f"command {text!r} wrote more than {MAX_OUTPUT >> 20} MB: stopped")
+        stdout = out.decode(errors="replace")
+        stderr = err.decode(errors="replace").strip()
+        said, quoted = last_words(stderr)
+        if code != 0:
+            raise self.fail(f"command {text!r} failed with exit code {code}{said}", quoted=quoted)
         if stderr:
             if on_stderr == "fail":
                 raise self.fail(
-                    f"command {text!r} wrote to stderr: {stderr}",
+                    f"command {text!r} wrote to stderr{said}",
                     expected="no stderr output, or $(command '...' warn|ignore|capture)",
+                    quoted=quoted,
                 )
             if on_stderr == "warn":
                 context.log("WARNING", f"command {text!r} wrote to stderr: {stderr}")
             if on_stderr == "capture":
-                return result.stdout + result.stderr
-        return result.stdout
+                return stdout + err.decode(errors="replace")
+        return stdout
+
+
+def _run(argv: list[str], context: LaunchContext) -> tuple[int | None, bytes, bytes]:
+    """Run ``argv`` in its own session; its exit code (None: stopped for writing too much),
+    stdout and stderr. Whatever interrupts the wait kills its group first."""
+    process = subprocess.Popen(
+        argv,
+        stdin=subprocess.DEVNULL,
+        stdout=subprocess.PIPE,
+        stderr=subprocess.PIPE,
+        env=dict(context.environment),
+        start_new_session=True,
+    )
+    groups = context.child_groups
+    if groups is not None:
+        groups.watch(process.pid)
+    code: int | None = None
+    try:
+        out, err, complete = _collect(process)
+        if complete:
+            # wait without reaping: while the leader is a zombie, its group id cannot be reused
+            # by another process, so killing what is left in the group is safe
+            os.waitid(os.P_PID, process.pid, os.WEXITED | os.WNOWAIT)
+    finally:
+        _kill_group(process.pid)
+        returncode = process.wait()
+    if complete:
+        code = returncode
+        for stream in (process.stdout, process.stderr):
+            if stream is not None:
+                stream.close()
+        if groups is not None:
+            groups.forget(process.pid)
+    return code, out, err
+
+
+def _collect(process: subprocess.Popen[bytes]) -> tuple[bytes, bytes, bool]:
+    """Read both pipes to their ends, or until :data:`MAX_OUTPUT` (then complete is False)."""
+    assert process.stdout is not None and process.stderr is not None
+    chunks: dict[int, list[bytes]] = {process.stdout.fileno(): [], process.stderr.fileno(): []}
+    total = 0
+    with selectors.DefaultSelector() as selector:
+        for fd in chunks:
+            selector.register(fd, selectors.EVENT_READ)
+        while selector.get_map():
+            for key, _ in selector.select():
+                data = os.read(key.fd, 65536)
+                if not data:
+                    selector.unregister(key.fd)
+                    continue
+                chunks[key.fd].append(data)
+                total += len(data)
+                if total > MAX_OUTPUT:
+                    return b"", b"", False
+    out, err = (b"".join(parts) for parts in chunks.values())
+    return out, err, True
+
+
+def _kill_group(pgid: int) -> None:
+    try:
+        os.killpg(pgid, signal.SIGKILL)
+    except (ProcessLookupError, PermissionError):
+        pass

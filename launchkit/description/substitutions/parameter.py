@@ -22,7 +22,7 @@ class Param(Call):
         """The parameter's value, or DEFAULT, or an error naming the parameter."""
         name = self.arg(0, context)
         for item in reversed(context.scope.global_params):
-            if not isinstance(item, str) and item[0] == name:
+            if isinstance(item, tuple) and item[0] == name:
                 return item[1]
         if len(self.args) > 1:
             return self.arg(1, context)

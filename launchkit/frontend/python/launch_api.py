@@ -100,7 +100,10 @@ class UnsetLaunchConfiguration(Action):
 
 
 class LaunchDescriptionSource:
-    """``launch.launch_description_sources.*LaunchDescriptionSource``: where a file is."""
+    """``launch.launch_description_sources.*LaunchDescriptionSource``: where a file is, and how
+    to read it (``syntax``; the classes are in ``description_sources.py``)."""
+
+    syntax: str | None = None
 
     def __init__(self, launch_description_source: Any, *_: Any, **__: Any) -> None:
         self.location = to_value(launch_description_source)
@@ -127,7 +130,13 @@ class IncludeLaunchDescription(lk.Include):
             else (launch_arguments or [])
         )
         args = [lk.IncludeArg(str(name), to_value(value)) for name, value in pairs]
-        super().__init__(source, args, here(), condition)
+        super().__init__(
+            source,
+            args,
+            here(),
+            condition,
+            syntax=getattr(launch_description_source, "syntax", None),
+        )
 
 
 class GroupAction(lk.Group):

@@ -198,14 +198,14 @@ class _UserSubstitution(Substitution):
 
 
 class PythonExpression(SubstitutionLike):
-    """``launch.substitutions.PythonExpression``, evaluated by ``$(eval)``'s evaluator (the
-    same rules as XML's ``$(eval EXPR MODULES)``)."""
+    """``launch.substitutions.PythonExpression``: evaluated by ``$(eval)``'s sandbox, with
+    ``python_modules`` (each a name or a substitution; ``math`` is the only one offered)."""
 
     def __init__(self, expression: Any, python_modules: Any = ("math",)) -> None:
-        modules = python_modules
-        if not isinstance(modules, str | SubstitutionLike):
-            items = list(modules)
-            modules = [part for i, m in enumerate(items) for part in ([","] if i else []) + [m]]
+        names = [python_modules] if isinstance(python_modules, str | SubstitutionLike) else None
+        modules: list[Any] = []
+        for index, name in enumerate(names or python_modules):
+            modules += [",", name] if index else [name]
         super().__init__(Eval([to_value(expression), to_value(modules)], here()))
 
 

@@ -1,5 +1,6 @@
 """The stand-in modules a ``*.launch.py`` imports: ``launch``, ``launch_ros``,
-``ament_index_python`` and ``lifecycle_msgs``, each with the Jazzy names launchkit provides.
+``ament_index_python``, ``lifecycle_msgs``, ``launch_xml`` and ``launch_yaml``, each with the
+Jazzy names launchkit provides.
 
 A name launchkit does not provide is an error naming it (``launch.actions.OpaqueCoroutine``)
 and the line that asks for it, raised by the module's ``__getattr__``; the few known names
@@ -34,6 +35,7 @@ from launchkit.frontend.python import process_api as P
 from launchkit.frontend.python import ros_api as R
 from launchkit.frontend.python import ros_params as RP
 from launchkit.frontend.python.context_view import LaunchContextView, perform_substitutions
+from launchkit.frontend.python.description_sources import source_modules
 from launchkit.frontend.python.values import here, unsupported
 from launchkit.packages import PackageIndex
 
@@ -42,6 +44,12 @@ def _module(name: str, **members: object) -> types.ModuleType:
     """A module whose missing names are errors naming them and the line asking."""
     module = types.ModuleType(name)
     module.__dict__.update(members)
+    return _refusing(module)
+
+
+def _refusing(module: types.ModuleType) -> types.ModuleType:
+    """``module``, its missing names made errors naming them and the line asking."""
+    name = module.__name__
 
     def missing(attribute: str) -> Any:
         if attribute.startswith("__"):
@@ -117,14 +125,8 @@ def _launch_modules() -> list[types.ModuleType]:
         LaunchConfigurationNotEquals=S.LaunchConfigurationNotEquals,
         InvalidConditionExpressionError=LaunchFileError,
     )
-    sources = _module(
-        "launch.launch_description_sources",
-        PythonLaunchDescriptionSource=L.LaunchDescriptionSource,
-        FrontendLaunchDescriptionSource=L.LaunchDescriptionSource,
-        XMLLaunchDescriptionSource=L.LaunchDescriptionSource,
-        YAMLLaunchDescriptionSource=L.LaunchDescriptionSource,
-        AnyLaunchDescriptionSource=L.LaunchDescriptionSource,
-    )
+    frontend_sources = {n: _refusing(m) for n, m in source_modules().items()}
+    sources = frontend_sources["launch.launch_description_sources"]
     handlers = _module(
         "launch.event_handlers",
         OnExecutionComplete=E.OnExecutionComplete,
@@ -182,11 +184,11 @@ def _launch_modules() -> list[types.ModuleType]:
         utilities=utilities,
     )
     return [
+        *frontend_sources.values(),
         launch,
         actions,
         substitutions,
         conditions,
-        sources,
         handlers,
         events,
         process_events,

@@ -175,10 +175,11 @@ class SetRemap(lk.SetRemap):
 
 
 class SetUseSimTime(lk.SetUseSimTime):
-    """``launch_ros.actions.SetUseSimTime``."""
+    """``launch_ros.actions.SetUseSimTime``: as in Jazzy, the launch's own ROS clock (for ROS
+    timers), not a parameter of the nodes; launchkit checks the value."""
 
     def __init__(self, value: Any, *, condition: Condition | None = None) -> None:
-        super().__init__(to_value(value), here(), condition)
+        super().__init__(to_value(value), here(), condition, nodes=False)
 
 
 class SetROSLogDir(Action):

@@ -38,10 +38,10 @@ def only_children(entity: Entity, allowed: tuple[str, ...]) -> list[Entity]:
     children = entity.children()
     for child in children:
         if child.tag not in allowed:
-            expected = "one of: " + ", ".join(f"<{t}>" for t in allowed) if allowed else "none"
+            names = ", ".join(entity.label(t) for t in allowed)
             raise child.error(
-                f"<{child.tag}> is not allowed inside <{entity.tag}>",
-                expected=f"child elements {expected}" if allowed else "no child elements",
+                f"{child.label()} is not allowed inside {entity.label()}",
+                expected=f"only {names} inside it" if allowed else "nothing inside it",
             )
     return children
 
@@ -93,12 +93,6 @@ def parse_group(entity: Entity, parser: ActionParser) -> Action:
     scoped = entity.static_bool("scoped", True)
     forwarding = entity.static_bool("forwarding", True)
     keeps = parse_keeps(entity, entity.children())
-    if keeps and forwarding:
-        raise entity.error(
-            '<keep> only applies to a group with forwarding="false"',
-            expected='forwarding="false" on the <group>',
-            attr=None,
-        )
     return Group(parser.parse_actions(entity, skip=("keep",)), scoped, forwarding, keeps)
 
 
@@ -139,7 +133,7 @@ def parse_process_options(entity: Entity) -> ProcessOptions:
         emulate_tty=entity.checked("emulate_tty", "bool"),
         sigterm_timeout=entity.checked("sigterm_timeout", "ufloat"),
         sigkill_timeout=entity.checked("sigkill_timeout", "ufloat"),
-        respawn=entity.checked("respawn", "bool"),
+        respawn=entity.checked("respawn", "bool", typed=False),
         respawn_delay=entity.checked("respawn_delay", "ufloat"),
         respawn_max_retries=entity.checked("respawn_max_retries", "int"),
         on_exit=entity.choice("on_exit", ("shutdown",)),

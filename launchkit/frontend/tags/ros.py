@@ -42,8 +42,17 @@ def parse_param(entity: Entity) -> ParamValue | ParamGroup | ParamFile:
         entity.assert_fully_read()
         return ParamFile(source, allow, entity.location)
     if name is None:
-        raise entity.error("<param> needs 'name' or 'from'", expected='name="..." value="..."')
-    value = entity.value("value")
+        raise entity.error(
+            "<param> needs 'name' or 'from'",
+            expected=f"{entity.example('name')} and {entity.example('value')}",
+        )
+    kind = entity.plain("type")
+    if kind is not None and kind not in PARAM_TYPES:
+        raise entity.error(
+            f"<param> type is {kind!r}", expected="one of " + ", ".join(PARAM_TYPES), attr="type"
+        )
+    typed = entity.param_value("value", kind)
+    value, kind = (None, kind) if typed is None else typed
     children = only_children(entity, ("param",))
     if value is not None and children:
         raise entity.error(
@@ -54,14 +63,15 @@ def parse_param(entity: Entity) -> ParamValue | ParamGroup | ParamFile:
             raise entity.error(
                 "<param> has no value", expected='value="..." or nested <param> elements'
             )
+        if kind is not None:
+            raise entity.error(
+                "<param> has both a type and nested <param>s",
+                expected="a type only with a value",
+                attr="type",
+            )
         entity.assert_fully_read()
         return ParamGroup(name, [_no_file(c, parse_param(c)) for c in children])
-    kind = entity.plain("type")
-    if kind is not None and kind not in PARAM_TYPES:
-        raise entity.error(
-            f"<param> type is {kind!r}", expected="one of " + ", ".join(PARAM_TYPES), attr="type"
-        )
-    sep = entity.value("value-sep")
+    sep = entity.value("value-sep") if entity.SPLITS_LISTS else None
     entity.assert_fully_read()
     return ParamValue(name, value, kind, sep, entity.location)
 
@@ -129,7 +139,7 @@ def parse_set_remap(entity: Entity, parser: ActionParser) -> Action:
 def parse_set_use_sim_time(entity: Entity, parser: ActionParser) -> Action:
     """``<set_use_sim_time value>``."""
     leaf(entity)
-    value = entity.checked("value", "bool")
+    value = entity.checked("value", "bool", typed=False)  # ROS's YAML reader: text only
     if value is None:
         raise entity.error(
             "<set_use_sim_time> is missing attribute 'value'", expected='value="true"'

@@ -20,7 +20,6 @@ if it cannot load).
 from __future__ import annotations
 
 import importlib
-import sys
 from dataclasses import asdict, dataclass
 from typing import Any
 
@@ -233,4 +232,4 @@ def main(argv: list[str]) -> int:
 
 
 if __name__ == "__main__":
-    sys.exit(_entry.run(main, "camera"))
+    _entry.run(main, "camera")

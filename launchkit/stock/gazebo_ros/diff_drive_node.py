@@ -10,7 +10,6 @@ alone: ``launchkit exec gazebo_ros diff_drive --ros-args -p entity:=NAME -p left
 from __future__ import annotations
 
 import importlib
-import sys
 from typing import Any
 
 from launchkit.errors import UserError
@@ -22,6 +21,7 @@ from launchkit.stock.gazebo_ros.sim.diff_drive import (
     DiffDriveConfigError,
     DiffDriveController,
     DiffDriveParams,
+    is_finite_command,
 )
 from launchkit.stock.gazebo_ros.state_pairs import StatePairs, nanoseconds
 
@@ -75,9 +75,17 @@ class DiffDriveNode:
             node.get_logger().warn("publish_wheel_tf is not supported; no wheel transforms")
 
     def _cmd(self, msg: Any) -> None:
-        self._pending_command = (float(msg.linear.x), float(msg.angular.z))
+        command = (float(msg.linear.x), float(msg.angular.z))
+        if not is_finite_command(*command):
+            self.node.get_logger().warn(
+                f"ignoring a non-finite command on '{self.params.command_topic}' "
+                f"(linear.x={command[0]}, angular.z={command[1]}); keeping the last one",
+                throttle_duration_sec=5.0,
+            )
+            return
+        self._pending_command = command
         if self.controller is not None:
-            self.controller.set_command(*self._pending_command)
+            self.controller.set_command(*command)
 
     def _truth(self, msg: Any) -> None:
         pose, twist = msg.pose.pose, msg.twist.twist
@@ -152,4 +160,4 @@ def main(argv: list[str]) -> int:
 
 
 if __name__ == "__main__":
-    sys.exit(_entry.run(main, "diff_drive"))
+    _entry.run(main, "diff_drive")

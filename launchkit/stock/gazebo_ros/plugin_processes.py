@@ -21,6 +21,7 @@ from __future__ import annotations
 
 import contextlib
 import ctypes
+import os
 import signal
 import subprocess
 import sys
@@ -32,6 +33,7 @@ from pathlib import Path
 
 import yaml
 
+from launchkit.envvars import RUN_TMPDIR
 from launchkit.runtime.lifecycle import Escalation, Lifecycle, Respawn, RespawnPolicy, SendSignal
 from launchkit.runtime.process import kill_group
 from launchkit.runtime.supervisor_client import SupervisorClient, SupervisorError
@@ -52,6 +54,16 @@ def _die_with_parent() -> None:
     # Runs in the child between fork and exec.
     with contextlib.suppress(OSError, AttributeError):
         ctypes.CDLL(None, use_errno=True).prctl(_PR_SET_PDEATHSIG, signal.SIGTERM)
+
+
+def _plugin_folder() -> tempfile.TemporaryDirectory[str]:
+    """Where the plugin nodes' parameter files go: in the launch's private folder under
+    ``launchkit run`` (its orphan guard removes it even if everything is SIGKILLed), else in
+    the system's temporary folder."""
+    launch_folder = os.environ.get(RUN_TMPDIR)
+    if launch_folder and os.path.isdir(launch_folder):
+        return tempfile.TemporaryDirectory(prefix="gazebo-", dir=launch_folder)
+    return tempfile.TemporaryDirectory(prefix="launchkit-gazebo-")
 
 
 def plugin_command(
@@ -98,9 +110,7 @@ class PluginProcesses:
 
     log: Callable[[str], None]
     children: dict[str, list[Child]] = field(default_factory=dict)
-    _tmp: tempfile.TemporaryDirectory[str] = field(
-        default_factory=lambda: tempfile.TemporaryDirectory(prefix="launchkit-gazebo-")
-    )
+    _tmp: tempfile.TemporaryDirectory[str] = field(default_factory=_plugin_folder)
     _launcher: SupervisorClient | None = None
     _asked_launcher: bool = False
 

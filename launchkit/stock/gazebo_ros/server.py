@@ -23,7 +23,6 @@ import faulthandler
 import importlib
 import os
 import signal
-import sys
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
@@ -360,4 +359,4 @@ def main(argv: list[str]) -> int:
 
 
 if __name__ == "__main__":
-    sys.exit(_entry.run(main, "gazebo"))
+    _entry.run(main, "gazebo")

@@ -140,4 +140,4 @@ def main(argv: list[str]) -> int:
 
 
 if __name__ == "__main__":
-    sys.exit(_entry.run(main, "spawn_entity.py"))
+    _entry.run(main, "spawn_entity.py")

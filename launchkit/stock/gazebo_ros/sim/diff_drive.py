@@ -225,9 +225,14 @@ class DiffDriveController:
     _encoder_pose: list[float] = field(default_factory=lambda: [0.0, 0.0, 0.0])
     _encoder_twist: tuple[float, float] = (0.0, 0.0)
 
-    def set_command(self, linear_x: float, angular_z: float) -> None:
-        """A ``cmd_vel``: forward speed (m/s) and yaw rate (rad/s)."""
+    def set_command(self, linear_x: float, angular_z: float) -> bool:
+        """A ``cmd_vel``: forward speed (m/s) and yaw rate (rad/s). A NaN or infinite value is
+        refused (False) and the previous command stays: one would poison the physics, and
+        with it the odometry, for good."""
+        if not is_finite_command(linear_x, angular_z):
+            return False
         self._target = (float(linear_x), float(angular_z))
+        return True
 
     def reset(self, now: float) -> None:
         """Forget the command and the odometry, as after a world reset."""
@@ -339,6 +344,11 @@ class DiffDriveController:
             pose_covariance=covariance,
             twist_covariance=covariance,
         )
+
+
+def is_finite_command(linear_x: float, angular_z: float) -> bool:
+    """Whether a command is a pair of real numbers (no NaN, no infinity)."""
+    return math.isfinite(linear_x) and math.isfinite(angular_z)
 
 
 def wheel_geometry_warnings(

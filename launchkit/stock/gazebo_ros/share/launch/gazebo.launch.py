@@ -72,7 +72,11 @@ def generate_launch_description():
             "-p",
             ["pause:=", LaunchConfiguration("pause")],
             "-p",
-            ["real_time_factor:=", LaunchConfiguration("real_time_factor")],
+            # a double parameter: "0" must reach the node as 0.0 (an integer is refused)
+            [
+                "real_time_factor:=",
+                PythonExpression(["float(", LaunchConfiguration("real_time_factor"), ")"]),
+            ],
             "-p",
             ["egl:=", LaunchConfiguration("egl")],
         ],
