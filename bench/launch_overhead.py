@@ -8,6 +8,8 @@ Measures, each as the median of --repeat runs, beside a baseline measured in the
   * SIGINT to exit with 10 sleeping children;
   * parse + check of a 1000-entity file in-process, XML and the same file in YAML (ROS 2
     launch: 1.6 s for the XML one on this machine);
+  * a 1000-entity Python launch file, loaded and evaluated, beside ROS 2's own launch doing
+    the same in the same run (with --ros-python);
   * the launcher's peak RSS with 100 children.
 
 With --ros-python (the Python of a venv holding the real Jazzy launch stack, built with
@@ -118,6 +120,80 @@ def peak_rss_mb(path: Path, env: dict[str, str]) -> float:
     )
     line = [x for x in result.stderr.splitlines() if x.startswith("RSS")][-1]
     return int(line.split()[1]) / 1024
+
+
+BIG_PYTHON = """
+from launch import LaunchDescription
+from launch.actions import DeclareLaunchArgument, ExecuteProcess, GroupAction
+from launch.actions import SetLaunchConfiguration
+from launch.conditions import IfCondition
+from launch.substitutions import EnvironmentVariable, LaunchConfiguration
+
+
+def generate_launch_description():
+    entities = [DeclareLaunchArgument('on', default_value='true'),
+                DeclareLaunchArgument('base', default_value='b')]
+    for i in range(333):
+        entities.append(GroupAction([
+            SetLaunchConfiguration(f'v{i}', [LaunchConfiguration('base'), f'-{i}']),
+            ExecuteProcess(cmd=['echo', LaunchConfiguration(f'v{i}'), EnvironmentVariable('HOME')],
+                           name=f'p{i}', output='screen'),
+        ], condition=IfCondition(LaunchConfiguration('on'))))
+    return LaunchDescription(entities)
+"""
+
+#: What ROS 2's launch does with the same file, timed in its own process: load it (run
+#: generate_launch_description), then load and run it with the groups off (nothing starts).
+ROS_TIMING = """
+import statistics, sys, time
+from launch import LaunchDescription, LaunchService
+from launch.actions import IncludeLaunchDescription
+from launch.launch_description_sources import PythonLaunchDescriptionSource
+from launch.launch_description_sources import get_launch_description_from_python_launch_file
+path, repeat = sys.argv[1], int(sys.argv[2])
+def timed(action):
+    samples = []
+    for _ in range(repeat):
+        start = time.perf_counter(); action(); samples.append(time.perf_counter() - start)
+    return statistics.median(samples)
+def run_off():
+    service = LaunchService(argv=['on:=false'])
+    service.include_launch_description(LaunchDescription([IncludeLaunchDescription(
+        PythonLaunchDescriptionSource(path), launch_arguments={'on': 'false'}.items())]))
+    assert service.run() == 0
+load = timed(lambda: get_launch_description_from_python_launch_file(path))
+print("TIMES", load, timed(run_off))
+"""
+
+
+def python_file_times(
+    directory: Path, repeat: int, ros_python: str | None, env: dict[str, str]
+) -> None:
+    """The 1000-entity Python launch file: launchkit's load + check and load + evaluate (with
+    the groups off, as ROS runs it), beside ROS 2's launch in the same run."""
+    from launchkit import api
+    from launchkit.checks import check_tree
+    from launchkit.frontend.launch_loader import LaunchLoader
+    from launchkit.packages import PackageIndex
+
+    path = directory / "big.launch.py"
+    path.write_text(BIG_PYTHON)
+    load = median_time(lambda: check_tree(path, {}, LaunchLoader(), PackageIndex()), repeat)
+    entities = check_tree(path, {}, LaunchLoader(), PackageIndex()).entity_count
+    evaluate = median_time(lambda: api.describe(path, {"on": "false"}), repeat)
+    ros = "not measured (no --ros-python)"
+    if ros_python:
+        result = subprocess.run(
+            [ros_python, "-c", ROS_TIMING, str(path), str(repeat)],
+            capture_output=True, text=True, env=env, check=True,
+        )  # fmt: skip
+        times = [line for line in result.stdout.splitlines() if line.startswith("TIMES")]
+        ros_load, ros_run = (float(x) for x in times[-1].split()[1:])
+        ros = f"ROS 2 launch, same run: {ros_load * 1000:.0f} ms / {ros_run * 1000:.0f} ms"
+    print(
+        f"Python file of {entities} entities, load + check / load + evaluate (groups off): "
+        f"{load * 1000:.0f} ms / {evaluate * 1000:.0f} ms ({ros})"
+    )
 
 
 ROS_PARSE = """
@@ -239,6 +315,7 @@ def main() -> None:
                 f"parse + check {entities} entities, {big.suffix[1:].upper()}: "
                 f"{check * 1000:.1f} ms (ros2 launch measured 1600 ms for 1000 XML{ros})"
             )
+        python_file_times(directory, repeat, options.ros_python, env)
         hundred = write(directory, "sleep100.launch.xml", '<executable cmd="sleep 0.5"/>\n' * 100)
         print(f"launcher peak RSS with 100 children: {peak_rss_mb(hundred, env):.1f} MB")
         imports = median_time(

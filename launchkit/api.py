@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import os
 import sys
+import sysconfig
 from collections.abc import Mapping
 from pathlib import Path
 from typing import IO, TYPE_CHECKING
@@ -13,6 +14,7 @@ from launchkit.description.actions import DeclareArgument, Include
 from launchkit.description.actions.base import Action
 from launchkit.description.launch_context import LaunchContext, Runner
 from launchkit.description.launch_description import LaunchDescription, walk
+from launchkit.description.ros_link import RosLink
 from launchkit.errors import LaunchkitError, PackageNotFoundError
 from launchkit.frontend.launch_loader import LaunchLoader
 from launchkit.packages import PackageIndex
@@ -84,10 +86,22 @@ def _context(
         packages=packages,
         runner=runner,
         loader=loader.load,
-        environment=dict(os.environ),
+        environment=launch_environment(os.environ),
         log_dir=run_dir,
         configurations=dict(arguments),
     )
+
+
+def launch_environment(environ: Mapping[str, str]) -> dict[str, str]:
+    """The environment a launch starts with: ``environ``, with the folder of launchkit's own
+    scripts (``xacro`` beside ``launchkit``) at the end of ``PATH`` when it is not there, so
+    ``Command(['xacro ', ...])`` works from an environment that was not activated."""
+    environment = dict(environ)
+    scripts = sysconfig.get_path("scripts")
+    folders = environment.get("PATH", os.defpath).split(os.pathsep)
+    if scripts and scripts not in folders:
+        environment["PATH"] = os.pathsep.join([*folders, scripts])
+    return environment
 
 
 def dry_run(
@@ -253,6 +267,13 @@ def run(
         supervisor = Supervisor(output, network=network, hooks=hooks, remote_factory=remote.factory)
         remote.bind(supervisor)
         context = _context(supervisor, arguments, packages, loader, run_dir.path)
+
+        def ros_link() -> RosLink:
+            from launchkit.ros_adapter import RosAdapter
+
+            return RosAdapter(lambda: network.ensure(supervisor), context.post)
+
+        context.ros_factory = ros_link
         return supervisor.run(tree.top, context)
     except LaunchkitError as error:
         output.launch_line("ERROR", "launch", error.format(), screen=False)

@@ -30,12 +30,15 @@ class PythonPackage:
     """A ROS-style package provided by a Python distribution.
 
     ``executables`` maps an executable name (what ``<node exec=...>`` names) to the Python
-    module that runs it as ``python -m MODULE``.
+    module that runs it as ``python -m MODULE``. ``programs`` maps a program launch files call
+    by bare name (``gazebo``, ``rviz2``) to the executable that stands in for it when no such
+    program is on the PATH.
     """
 
     name: str
     share: Path
     executables: Mapping[str, str] = field(default_factory=dict)
+    programs: Mapping[str, str] = field(default_factory=dict)
 
 
 @dataclass(frozen=True)
@@ -146,6 +149,15 @@ class PackageIndex:
             f"executable '{executable}' not found in package '{package}'",
             expected=f"an executable file {candidate}",
         )
+
+    def stand_in(self, program: str) -> tuple[str, list[str]] | None:
+        """The package and argv prefix of launchkit's stand-in for bare program name
+        ``program`` (``gazebo`` -> gazebo_ros's server), or None."""
+        for name, package in sorted(self.python_packages().items()):
+            executable = package.programs.get(program)
+            if executable is not None:
+                return name, self.executable(name, executable)
+        return None
 
     def executables(self, package: str) -> list[str]:
         """Names of the executables ``package`` provides."""

@@ -1,7 +1,8 @@
 """The three-wheeled robot package: where its launch files and URDF live.
 
-In a source checkout the share directory is the repository root (``launch_xml/`` and ``urdf/``
-beside this package); in an installed wheel they are packed under ``robot_wheel/share/``.
+In a source checkout the share directory is the repository root (``launch/`` with the
+tutorials' Python launch files, ``launch_xml/``, ``urdf/`` and ``config/`` beside this
+package); in an installed wheel they are packed under ``robot_wheel/share/``.
 """
 
 from __future__ import annotations

@@ -16,16 +16,18 @@ import copy
 import os
 import shutil
 import tempfile
+from collections import deque
 from collections.abc import Callable, Iterator, Sequence
 from contextlib import contextmanager
 from dataclasses import dataclass, field
 from pathlib import Path
-from typing import TYPE_CHECKING, Protocol
+from typing import TYPE_CHECKING, Any, Protocol
 
 from launchkit.packages import PackageIndex
 
 if TYPE_CHECKING:
     from launchkit.description.process_spec import ProcessSpec
+    from launchkit.description.ros_link import RosLink
     from launchkit.errors import LaunchkitError, Location
 
 
@@ -62,6 +64,23 @@ class DelayedActions(Protocol):
     @property
     def cancel_on_shutdown(self) -> bool:
         """Whether a shutdown drops them before they run."""
+
+
+class Handler(Protocol):
+    """An event handler as the context keeps it
+    (:class:`launchkit.description.events.EventHandler`)."""
+
+    snapshot: Snapshot | None
+
+    def matches(self, event: object) -> bool:
+        """Whether it reacts to ``event``."""
+
+    def handle(self, event: object, context: LaunchContext) -> Sequence[Visitable]:
+        """The actions to run for ``event``."""
+
+    @property
+    def handle_once(self) -> bool:
+        """Whether it is unregistered after its first event."""
 
 
 class RequiredArgument(Protocol):
@@ -102,6 +121,10 @@ class Runner(Protocol):
 
     def log(self, level: str, logger: str, message: str) -> None:
         """Print a launch line ``[LEVEL] [logger]: message``."""
+
+    def stop_processes(self, matcher: Callable[[object], bool], signum: int | None) -> None:
+        """Stop (``signum`` None: as a shutdown would, never respawning) or signal the running
+        processes whose action ``matcher`` accepts."""
 
 
 class ChildGroups(Protocol):
@@ -151,6 +174,24 @@ class LaunchContext:
         self._log_dir = log_dir
         self._stack: list[Scope] = []
         self._scratch: Path | None = None
+        #: Registered event handlers, newest first (as ROS keeps them).
+        self.handlers: deque[Handler] = deque()
+        self.event_queue: deque[object] = deque()
+        self.draining = False
+        self.is_shutdown = False
+        self.locals: dict[str, Any] = {}
+        #: What Push/PopLaunchConfigurations and Push/PopEnvironment (Python API) keep.
+        self.saved_scopes: list[Scope] = []
+        self.saved_environments: list[dict[str, str]] = []
+        #: Told of every handler registered (the ``--print`` recorder shows their actions).
+        self.on_register: Callable[[Handler], None] | None = None
+        #: Work posted from other threads (the ROS link's replies), run on the launch's loop;
+        #: ``waker`` makes the loop look (set by the runner).
+        self.posted: deque[Callable[[], None]] = deque()
+        self.waker: Callable[[], None] | None = None
+        #: Makes the launcher's ROS node on first use (None: no ROS, as for ``--print``).
+        self.ros_factory: Callable[[], RosLink] | None = None
+        self._ros: RosLink | None = None
         #: set by the supervisor: told about every ``$(command)``'s process group
         self.child_groups: ChildGroups | None = None
         #: set by the supervisor: the private folder generated files go in (removed even when
@@ -182,7 +223,10 @@ class LaunchContext:
         return Path(name)
 
     def cleanup(self) -> None:
-        """Remove the generated files."""
+        """Leave the ROS graph and remove the generated files."""
+        if self._ros is not None:
+            self._ros.close()
+            self._ros = None
         if self._scratch is not None:
             shutil.rmtree(self._scratch, ignore_errors=True)
             self._scratch = None
@@ -190,6 +234,44 @@ class LaunchContext:
     def log(self, level: str, message: str, logger: str = "launch") -> None:
         """Print a launch line through the runner."""
         self.runner.log(level, logger, message)
+
+    def post(self, work: Callable[[], None]) -> None:
+        """Run ``work`` on the launch's loop soon (callable from any thread)."""
+        self.posted.append(work)
+        if self.waker is not None:
+            self.waker()
+
+    def ros(self) -> RosLink | None:
+        """The launcher's ROS node (made on first use), or None when the launch has none."""
+        if self._ros is None and self.ros_factory is not None:
+            self._ros = self.ros_factory()
+        return self._ros
+
+    def emit(self, event: object) -> None:
+        """Queue ``event`` for the handlers (the runner drains the queue)."""
+        self.event_queue.append(event)
+
+    def register_handler(self, handler: Handler) -> None:
+        """Add an event handler, ahead of the ones registered before it; it will run its
+        actions in the current scope."""
+        handler.snapshot = self.snapshot()
+        self.handlers.appendleft(handler)
+        if self.on_register is not None:
+            self.on_register(handler)
+
+    @contextmanager
+    def local(self, name: str, value: Any) -> Iterator[None]:
+        """Make ``value`` the local ``name`` (``LocalSubstitution``) while the body runs."""
+        missing = object()
+        previous = self.locals.get(name, missing)
+        self.locals[name] = value
+        try:
+            yield
+        finally:
+            if previous is missing:
+                self.locals.pop(name, None)
+            else:
+                self.locals[name] = previous
 
     @contextmanager
     def scoped(self, scope: Scope | None = None) -> Iterator[None]:

@@ -31,6 +31,8 @@ class ProcessSpec:
     env_changes: dict[str, str | None] = field(default_factory=dict)
     files: dict[str, str] = field(default_factory=dict)
     machine: str = ""  # the agent (host) that runs it; "" for this host
+    #: The action that started it (what event handlers' ``target_action`` names).
+    origin: object | None = None
 
     def command_line(self) -> str:
         """The command as a shell would need it typed."""

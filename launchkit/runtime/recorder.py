@@ -3,19 +3,27 @@
 from __future__ import annotations
 
 import shlex
+import signal
+from collections.abc import Callable, Sequence
 from dataclasses import dataclass, field
 from typing import TYPE_CHECKING
 
 from launchkit.description.process_spec import ProcessSpec
 
 if TYPE_CHECKING:
-    from launchkit.description.launch_context import DelayedActions, LaunchContext, Snapshot
+    from launchkit.description.launch_context import (
+        DelayedActions,
+        Handler,
+        LaunchContext,
+        Snapshot,
+        Visitable,
+    )
 
 
 @dataclass
 class Recorded:
-    """One thing the launch would do: a process, a timer (with what it would do), a shutdown,
-    or a log line."""
+    """One thing the launch would do: a process, a timer or an event handler (with what it
+    would do), a shutdown, or a log line."""
 
     kind: str
     delay: float = 0.0
@@ -24,13 +32,67 @@ class Recorded:
     inner: list[Recorded] = field(default_factory=list)
 
 
+class _Placeholder:
+    """What an event handler's ``LocalSubstitution('event.x')`` shows in ``--print``."""
+
+    def __init__(self, path: str) -> None:
+        self._path = path
+
+    def __getattr__(self, name: str) -> _Placeholder:
+        return _Placeholder(f"{self._path}.{name}")
+
+    def __str__(self) -> str:
+        return f"<{self._path}>"
+
+
 class Recorder:
-    """The :class:`Runner` for ``--print``: timers are evaluated at once, in their scope."""
+    """The :class:`Runner` for ``--print``: timers and event handlers' actions are evaluated
+    at once, in their scope (an event's attributes show as ``<event.name>``)."""
 
     def __init__(self) -> None:
-        self.context: LaunchContext | None = None
+        self._context: LaunchContext | None = None
         self.items: list[Recorded] = []
         self._target = self.items
+        self._expanding: list[object] = []
+
+    @property
+    def context(self) -> LaunchContext | None:
+        """The context being recorded."""
+        return self._context
+
+    @context.setter
+    def context(self, context: LaunchContext | None) -> None:
+        self._context = context
+        if context is not None:
+            context.on_register = self.handler_registered
+
+    def handler_registered(self, handler: Handler) -> None:
+        """Record the handler and the actions it would run (those known without an event);
+        launchkit's own handlers are not shown."""
+        if getattr(handler, "internal", False):
+            return
+        describe: Callable[[], str] | None = getattr(handler, "describe", None)
+        item = Recorded("handler", text=describe() if describe else type(handler).__name__)
+        self._target.append(item)
+        children: Sequence[Visitable] = getattr(handler, "children", list)()
+        if handler in self._expanding or self.context is None:
+            return
+        outer, self._target = self._target, item.inner
+        self._expanding.append(handler)
+        context = self.context
+        try:
+            assert handler.snapshot is not None
+            with context.restored(handler.snapshot), context.local("event", _Placeholder("event")):
+                for action in children:
+                    action.visit(context)
+        finally:
+            self._expanding.pop()
+            self._target = outer
+
+    def stop_processes(self, matcher: Callable[[object], bool], signum: int | None) -> None:
+        """Record the stop (which processes it reaches is known only while running)."""
+        what = "stop" if signum is None else f"send {signal.Signals(signum).name} to"
+        self._target.append(Recorded("log", text=f"{what} the matching processes"))
 
     def start_process(self, spec: ProcessSpec) -> None:
         """Record the process."""
@@ -103,6 +165,9 @@ def render(items: list[Recorded], indent: str = "") -> str:
         elif item.kind == "timer":
             lines.append(f"{indent}timer after {item.delay:g} s:")
             lines.append(render(item.inner, indent + "  ") or f"{indent}  (nothing)")
+        elif item.kind == "handler":
+            lines.append(f"{indent}event handler {item.text}:")
+            lines.append(render(item.inner, indent + "  ") or f"{indent}  (a Python function)")
         elif item.kind == "shutdown":
             lines.append(f"{indent}shutdown: {item.text}")
         else:

@@ -27,12 +27,15 @@ from collections.abc import Callable
 from pathlib import Path
 from typing import TYPE_CHECKING
 
+from launchkit.description.events import ExecutionComplete
 from launchkit.description.process_spec import ProcessSpec
 from launchkit.envvars import RUN_TMPDIR
 from launchkit.errors import LaunchkitError
-from launchkit.runtime.child_requests import ChildRequests, RequestError
+from launchkit.runtime.child_host import ChildHostMixin
+from launchkit.runtime.child_requests import ChildRequests
 from launchkit.runtime.cleanup import LaunchCleanup
 from launchkit.runtime.hooks import SupervisorHooks
+from launchkit.runtime.launch_events import EventRelay
 from launchkit.runtime.lifecycle import Respawn, SendSignal, State
 from launchkit.runtime.output import Output
 from launchkit.runtime.process import (
@@ -58,8 +61,9 @@ if TYPE_CHECKING:
     from launchkit.runtime.network import NodeNetwork
 
 
-class Supervisor:
-    """Runs a launch description and supervises what it starts (the :class:`Runner`)."""
+class Supervisor(ChildHostMixin):
+    """Runs a launch description and supervises what it starts (the :class:`Runner`; the
+    processes started on request are in :class:`ChildHostMixin`)."""
 
     def __init__(
         self,
@@ -72,7 +76,7 @@ class Supervisor:
         remote_factory: ProcessFactory | None = None,
     ) -> None:
         self.output = output
-        self.hooks = hooks or SupervisorHooks()
+        self.hooks = self._relay = EventRelay(hooks or SupervisorHooks())
         self.network = network
         self.clock = clock
         self.processes: list[SupervisedProcess] = []
@@ -113,11 +117,19 @@ class Supervisor:
     def request_shutdown(self, reason: str) -> None:
         """``<shutdown>``: stop everything."""
         with self._signals.deferred():
-            self.begin_shutdown(f"shutdown requested: {reason}")
+            self.begin_shutdown(f"shutdown requested: {reason}", cause=reason)
 
     def log(self, level: str, logger: str, message: str) -> None:
         """A launch line."""
         self.output.launch_line(level, logger, message)
+
+    def stop_processes(self, matcher: Callable[[object], bool], signum: int | None) -> None:
+        """ShutdownProcess (``signum`` None) / SignalProcess for the matching processes."""
+        for process in [p for p in self.processes if p.alive and matcher(p.spec.origin)]:
+            if signum is None:
+                self.stop_child(process)
+            else:
+                self._send(process, SendSignal(signal.Signals(signum)))
 
     # -- running -----------------------------------------------------------------------------
 
@@ -126,7 +138,7 @@ class Supervisor:
 
         Errors in the first pass (before anything started) propagate as exceptions.
         """
-        self._context = context
+        self._context = self._relay.attach(context, self._selector)
         self._signals.install()
         self._selector.register(self._signals.fd, selectors.EVENT_READ, self._read_signals)
         try:
@@ -134,6 +146,7 @@ class Supervisor:
             self._open_requests()
             self._first_pass(description, context)
             self.hooks.launch_ready()
+            self._relay.drain(self.fail)
             while not self._done():
                 self.step(self._timeout())
         finally:
@@ -194,6 +207,7 @@ class Supervisor:
             key.data()
         self._io.poll(self.processes)
         self._run_due()
+        self._relay.drain(self.fail)  # the handlers of what happened; an error shuts down
 
     def _done(self) -> bool:
         if any(p.alive for p in self.processes):
@@ -228,6 +242,7 @@ class Supervisor:
             with self._signals.interrupting(), context.restored(snapshot):
                 for action in timer.actions:
                     action.visit(context)
+            context.emit(ExecutionComplete(action=timer))
         except LaunchkitError as error:
             self.fail(error)
         except Interrupted:
@@ -294,7 +309,7 @@ class Supervisor:
         if self.shutting_down:
             return
         if required:
-            if code != 0:
+            if code != 0 and not outcome.expected:  # not when the launch stopped it itself
                 self.exit_code = self.exit_code or (code if code > 0 else 128 - code)
             self.begin_shutdown(
                 f"process[{process.label}] was required: shutting down launched system"
@@ -302,49 +317,18 @@ class Supervisor:
         else:
             self._report.respawn(process, outcome)
 
-    # -- processes started on request (the ChildHost protocol of child_requests) -------------
-
-    def owner_of(self, pid: int) -> SupervisedProcess | None:
-        """The running process of the launch whose pid (and so session) is ``pid``."""
-        return next((p for p in self.processes if p.alive and p.pid == pid), None)
-
-    def start_child(self, spec: ProcessSpec, owner: SupervisedProcess) -> SupervisedProcess:
-        """Start ``spec`` at ``owner``'s request; :class:`RequestError` if it cannot start
-        (a refused request never stops the launch)."""
-        if self.shutting_down:
-            raise RequestError("the launch is shutting down")
-        try:
-            check_program(spec)
-        except LaunchkitError as error:
-            raise RequestError(error.message) from None
-        process = self._managed(spec)
-        try:
-            process.spawn()
-        except OSError as error:
-            raise RequestError(f"could not start '{spec.cmd[0]}': {error.strerror}") from None
-        process.lifecycle.started(self.clock())
-        self.processes.append(process)
-        self.log("INFO", process.label, f"started at the request of {owner.label}")
-        self._watch(process)
-        return process
-
-    def stop_child(self, process: SupervisedProcess) -> None:
-        """Stop a process started on request, as a shutdown would, and never respawn it."""
-        effect = process.lifecycle.stop(self.clock(), retire=True)
-        if effect is not None:
-            self.hooks.process_stopping(process)
-            self._send(process, effect)
-
     # -- shutdown ----------------------------------------------------------------------------
 
-    def begin_shutdown(self, reason: str, level: str = "INFO") -> None:
-        """Cancel timers and respawns and send SIGINT to every running process group."""
+    def begin_shutdown(self, reason: str, level: str = "INFO", cause: str | None = None) -> None:
+        """Cancel timers and respawns, run OnShutdown handlers, SIGINT every process group."""
         if self.shutting_down:
             return
         self.shutting_down = True
         self.log(level, "launch", reason)
         self.hooks.shutdown(reason)
         self._timers.cancel_on_shutdown()
+        if (error := self._relay.shutting_down(cause or reason, self._interrupts > 0)) is not None:
+            self.fail(error)  # reported; the shutdown goes on
         now = self.clock()
         for process in self.processes:
             effect = process.lifecycle.stop(now)
@@ -367,7 +351,8 @@ class Supervisor:
         if self._interrupts == 1:
             self.log("WARNING", "launch", first_signal_message(signum))
             self.exit_code = self.exit_code or exit_status(signum)
-            self.begin_shutdown("shutting down")
+            cause = "ctrl-c (SIGINT)" if signum == signal.SIGINT else name  # ROS's reasons
+            self.begin_shutdown("shutting down", cause=cause)
             return
         stopping = [p for p in self.processes if p.alive]
         waiting = ", ".join(f"{p.label} [pid {p.pid}]" for p in stopping) or "nothing"
@@ -395,6 +380,7 @@ class Supervisor:
             self.network.close()
         if self._context is not None:
             self._context.cleanup()
+        self._relay.close()
         self._cleanup.close()
         self._selector.close()
         self._signals.close()

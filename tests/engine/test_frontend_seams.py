@@ -18,7 +18,7 @@ from launchkit.errors import LaunchFileError, Location
 from launchkit.frontend.action_parser import ActionParser
 from launchkit.frontend.base_entity import Entity
 from launchkit.frontend.launch_loader import LaunchLoader
-from launchkit.frontend.tags import launch, ros, standard_parser
+from launchkit.frontend.tags import composition, launch, ros, standard_parser
 
 
 @dataclass
@@ -106,7 +106,7 @@ def test_tags_are_registered_explicitly() -> None:
     only_launch = ActionParser()
     launch.register(only_launch)
     assert "log" in only_launch.tags() and "node" not in only_launch.tags()
-    assert standard_parser().tags() == sorted({*launch.TAGS, *ros.TAGS})
+    assert standard_parser().tags() == sorted({*launch.TAGS, *ros.TAGS, *composition.TAGS})
 
 
 def test_a_tag_registered_twice_is_refused() -> None:

@@ -38,7 +38,8 @@ def generate_launch_description():
 
 def test_declarations_processes_and_conditions(evaluate_xml: EvaluateXml) -> None:
     quiet = evaluate_xml(GAZEBO_LIKE, name="gz.launch.py")
-    assert quiet.process("server").cmd == ["server", "empty.world"]
+    # an empty word stays an empty argument, as in ROS
+    assert quiet.process("server").cmd == ["server", "empty.world", ""]
     assert quiet.logs == []
     loud = evaluate_xml(GAZEBO_LIKE, {"verbose": "true", "world": "w"}, name="gz.launch.py")
     assert loud.process("server").cmd == ["server", "w", "--verbose"]
@@ -93,12 +94,12 @@ def generate_launch_description():
 def test_unsupported_api_names_file_and_line(evaluate_xml: EvaluateXml) -> None:
     code = (
         "from launch import LaunchDescription\n"
-        "from launch.actions import OpaqueFunction\n"
+        "from launch.actions import OpaqueCoroutine\n"
         "\n"
         "def generate_launch_description():\n"
-        "    return LaunchDescription([OpaqueFunction(function=print)])\n"
+        "    return LaunchDescription([OpaqueCoroutine(coroutine=print)])\n"
     )
-    with pytest.raises(LaunchFileError, match="OpaqueFunction is not supported") as caught:
+    with pytest.raises(LaunchFileError, match="OpaqueCoroutine is not supported") as caught:
         evaluate_xml(code, name="opaque.launch.py")
     assert caught.value.location is not None and caught.value.location.line == 5
 
@@ -134,8 +135,8 @@ def test_on_exit_shutdown(evaluate_xml: EvaluateXml) -> None:
     )
     result = evaluate_xml(code, name="exit.launch.py")
     assert result.process("a").on_exit_shutdown and result.process("b").on_exit_shutdown
-    bad = code.replace("on_exit=[Shutdown()]", "on_exit=[LogInfo(msg='bye')]")
-    with pytest.raises(LaunchFileError, match="on_exit with actions") as caught:
+    bad = code.replace("on_exit=[Shutdown()]", "on_exit=[LogInfo(msg='bye'), 'x']")
+    with pytest.raises(LaunchFileError, match="on_exit holds a str") as caught:
         evaluate_xml(bad, name="exit2.launch.py")
     assert caught.value.location is not None and caught.value.location.line == 6
 

@@ -67,7 +67,7 @@ EXPECTED: dict[tuple[str, tuple[str, ...]], list[str | re.Pattern[str]]] = {
         "frame_prefix: beta/",
         "cmd: echo spawning alpha at x=0.0",
         "cmd: echo spawning beta at x=2.0",
-        re.compile(r"use_sim_time(: |:=)true"),
+        re.compile(r"use_sim_time(: |:=)[Tt]rue"),  # -p writes Python's True, as launch_ros
         "env: ROBOT_NAMES=alpha,beta",
         "timer after 3 s:",
         "[INFO] [launch.user]: robots up: alpha,beta",

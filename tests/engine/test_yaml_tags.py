@@ -446,7 +446,7 @@ launch:
     assert str(params) in args
     parameters = node_parameters(inside)
     assert parameters["robot"] == "wheel" and parameters["use_sim_time"] is True
-    assert "--ros-args" not in result.process("outside").cmd
+    assert result.process("outside").cmd[3:] == ["--ros-args"]  # always, as launch_ros writes it
 
 
 # -- YAML itself ---------------------------------------------------------------------------------

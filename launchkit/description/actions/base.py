@@ -5,6 +5,7 @@ from __future__ import annotations
 from collections.abc import Sequence
 from typing import TYPE_CHECKING
 
+from launchkit.description.events import ExecutionComplete
 from launchkit.description.substitutions.base import Value, perform
 from launchkit.description.truth import BOOL_EXPECTED, bool_value
 from launchkit.errors import LaunchkitError, Location, RuntimeLaunchError
@@ -18,6 +19,9 @@ class Action:
     """Base of every tag's action: ``visit`` checks ``if``/``unless``, then ``execute``."""
 
     TAG = ""
+    #: Whether the action completes later than when it runs (a process when it exits for
+    #: good, a timer when it fires); those emit ExecutionComplete themselves.
+    COMPLETES_LATER = False
 
     def __init__(self, location: Location | None = None, condition: Condition | None = None):
         self.location = location
@@ -29,6 +33,8 @@ class Action:
             if self.condition is not None and not self.condition.evaluate(context):
                 return
             self.execute(context)
+            if not self.COMPLETES_LATER:
+                context.emit(ExecutionComplete(action=self))
         except LaunchkitError as error:
             if self.location is not None:
                 error.with_location(self.location)

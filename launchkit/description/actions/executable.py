@@ -5,6 +5,8 @@ from __future__ import annotations
 import os
 import re
 import shlex
+import shutil
+from collections.abc import Sequence
 from dataclasses import dataclass, field
 from typing import TYPE_CHECKING
 
@@ -39,6 +41,10 @@ class ProcessOptions:
     respawn_max_retries: Value | None = None
     on_exit: Value | None = None
     env: list[tuple[Value, Value]] = field(default_factory=list)
+    #: Actions to run each time the process exits (Python's ``on_exit=[...]``).
+    on_exit_actions: list[Action] = field(default_factory=list)
+    #: Start from an empty environment plus ``env`` (Python's ``env=``), not the launch's.
+    clean_env: bool = False
 
 
 class ProcessBuilder:
@@ -93,10 +99,14 @@ class ProcessBuilder:
         o, ctx = self.options, self.context
         if not words:
             raise RuntimeLaunchError("the command is empty", self.location, expected="a program")
-        cmd = words if prefixed else self.launch_prefix(words[0]) + words
-        env = dict(ctx.environment)
+        env = {} if o.clean_env else dict(ctx.environment)
         for name, value in o.env:
             env[perform(name, ctx)] = perform(value, ctx)
+        stand_in = None if is_node or prefixed else self._stand_in(words[0], env)
+        if stand_in is not None:
+            words = stand_in + words[1:]
+            is_node = True  # launchkit's stand-ins are ROS nodes: they need the router
+        cmd = words if prefixed else self.launch_prefix(words[0]) + words
         env.setdefault("PYTHONUNBUFFERED", "1")
         output = self._output()
         emulate_default = condition_value(ctx.configurations.get("emulate_tty", "false")) or False
@@ -131,6 +141,22 @@ class ProcessBuilder:
         spec.machine = ctx.scope.machine
         return spec
 
+    def _stand_in(self, program: str, env: dict[str, str]) -> list[str] | None:
+        """launchkit's stand-in for a program called by bare name that is not installed
+        (``gazebo``, ``gzclient``, ``rviz2``), said on the console; None otherwise."""
+        if "/" in program or shutil.which(program, path=env.get("PATH", os.defpath)):
+            return None
+        found = self.context.packages.stand_in(program)
+        if found is None:
+            return None
+        package, argv = found
+        self.context.log(
+            "INFO",
+            f"'{program}' is not installed: running launchkit's stand-in from package "
+            f"'{package}' in its place",
+        )
+        return argv
+
     def _output(self) -> str:
         override = self.context.initial_environment.get("OVERRIDE_LAUNCH_PROCESS_OUTPUT")
         output = override or self.text(self.options.output, "log") or "log"
@@ -147,10 +173,27 @@ def _changes(before: dict[str, str], after: dict[str, str]) -> dict[str, str | N
     return changed
 
 
+def start(
+    action: Action, spec: ProcessSpec, options: ProcessOptions, context: LaunchContext
+) -> None:
+    """Hand ``spec`` to the runner as started by ``action``, with its ``on_exit`` actions
+    registered as a handler of its exits."""
+    spec.origin = action
+    if options.on_exit_actions:
+        from launchkit.description.events import EventHandler, ProcessExited, action_matcher
+
+        handler = EventHandler(
+            matcher=action_matcher(ProcessExited, action), entities=options.on_exit_actions
+        )
+        context.register_handler(handler)
+    context.runner.start_process(spec)
+
+
 class ExecuteProcess(Action):
     """``<executable cmd="...">``: one supervised process."""
 
     TAG = "executable"
+    COMPLETES_LATER = True
 
     def __init__(
         self,
@@ -177,6 +220,10 @@ class ExecuteProcess(Action):
         words = split_command(self.cmd, context, self.location)
         return builder.build(words, words[0] if words else "", False)
 
+    def children(self) -> Sequence[Action]:
+        """The ``on_exit`` actions."""
+        return self.options.on_exit_actions
+
     def execute(self, context: LaunchContext) -> None:
         """Hand the process to the runner."""
-        context.runner.start_process(self.evaluate(context))
+        start(self, self.evaluate(context), self.options, context)

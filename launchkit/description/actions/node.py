@@ -1,12 +1,9 @@
 """``<node>``: a ROS node from a package, with ROS 2's command-line conventions.
 
-The command is ``EXECUTABLE [args] --ros-args [ros_args] -r __node:=NAME -r __ns:=/NS
-[global parameters] [node parameters] -r from:=to ...``, as launch_ros builds it, so a real
-ROS 2 executable found through ``AMENT_PREFIX_PATH`` runs unchanged. Global parameters
-(``<set_parameter>``, ``<set_parameters_from_file>``) come first, as ``-p NAME:=VALUE`` and
-``--params-file FILE`` in the order they were set; then each of the node's own parameters in
-document order: a generated params file for every ``<param name>`` (every dict in Python), the
-file itself for every ``<param from>``. The last one to set a name wins.
+The command is ``EXECUTABLE [args] [--ros-args ROS_ARGS] --ros-args -r __node:=NAME
+-r __ns:=/NS [parameters] [-r from:=to ...]`` exactly as launch_ros builds it
+(:mod:`launchkit.description.actions.node_arguments`), so a real ROS 2 executable found through
+``AMENT_PREFIX_PATH`` runs unchanged and gets the same parameters.
 """
 
 from __future__ import annotations
@@ -16,9 +13,14 @@ from dataclasses import dataclass
 from typing import TYPE_CHECKING
 
 from launchkit.description.actions.base import Action
-from launchkit.description.actions.executable import ProcessBuilder, ProcessOptions
-from launchkit.description.actions.parameters import ParamEntry, evaluate_params
-from launchkit.description.actions.ros_scope import NAMESPACE_CONFIGURATION, join_namespace
+from launchkit.description.actions.executable import ProcessBuilder, ProcessOptions, start
+from launchkit.description.actions.node_arguments import ros_arguments
+from launchkit.description.actions.parameters import ParamEntry
+from launchkit.description.actions.ros_scope import (
+    NAMESPACE_CONFIGURATION,
+    join_namespace,
+    ros_namespace,
+)
 from launchkit.description.command_line import split_command
 from launchkit.description.process_spec import ProcessSpec
 from launchkit.description.substitutions.base import Value, perform
@@ -41,6 +43,7 @@ class ExecuteNode(Action):
     """Run executable EXEC of package PKG as a ROS node."""
 
     TAG = "node"
+    COMPLETES_LATER = True
 
     def __init__(
         self,
@@ -51,8 +54,8 @@ class ExecuteNode(Action):
         node_name: Value | None = None,
         namespace: Value | None = None,
         exec_name: Value | None = None,
-        args: Value | None = None,
-        ros_args: Value | None = None,
+        args: Value | list[Value] | None = None,
+        ros_args: Value | list[Value] | None = None,
         params: list[ParamEntry] | None = None,
         remaps: list[Remap] | None = None,
         location: Location | None = None,
@@ -77,12 +80,12 @@ class ExecuteNode(Action):
             program = context.packages.executable(perform(self.pkg, context), executable)
         else:
             program = [executable]
-        argv = program + (split_command(self.args, context, self.location) if self.args else [])
-        if self.ros_args is not None:  # its own --ros-args section, as launch_ros writes it
-            argv += ["--ros-args", *split_command(self.ros_args, context, self.location)]
-        ros_args, files = self._ros_arguments(context)
-        if ros_args:
-            argv += ["--ros-args", *ros_args]
+        argv = program + self._words(self.args, context)
+        if self.ros_args is not None:  # a section of its own, before launch_ros's
+            argv += ["--ros-args", *self._words(self.ros_args, context)]
+        remaps = [(remap.src, remap.dst) for remap in self.remaps]
+        ros, files = ros_arguments(self.node_name, self.namespace, self.params, remaps, context)
+        argv += ["--ros-args", *ros]
         # <node>'s `name` attribute is the ROS node name; the process label is exec_name or
         # the executable's name (as launch_ros does).
         options = ProcessOptions(**{**vars(self.options), "name": self.exec_name})
@@ -91,51 +94,23 @@ class ExecuteNode(Action):
         spec.files = files
         return spec
 
-    def _ros_arguments(self, context: LaunchContext) -> tuple[list[str], dict[str, str]]:
-        import yaml  # lazily: most launches never need it
+    def _words(self, value: Value | list[Value] | None, context: LaunchContext) -> list[str]:
+        """``args`` / ``ros_args``: an attribute split like a command line, or (Python's
+        ``arguments=[...]``) one argv word per item."""
+        if value is None:
+            return []
+        if isinstance(value, list):
+            return [perform(word, context) for word in value]
+        return split_command(value, context, self.location)
 
-        out: list[str] = []
-        files: dict[str, str] = {}
-        if self.node_name is not None:
-            out += ["-r", f"__node:={perform(self.node_name, context)}"]
-        namespace = self._namespace(context)
-        if namespace:
-            out += ["-r", f"__ns:={namespace}"]
-        for item in context.scope.global_params:
-            if isinstance(item, tuple):
-                out += ["-p", f"{item[0]}:={item[1]}"]
-            else:
-                out += ["--params-file", os.path.abspath(item)]
-        node_name = self._params_key(context, namespace)
-        for params in evaluate_params(self.params, context):
-            if isinstance(params, dict):
-                text = yaml.safe_dump(
-                    {node_name: {"ros__parameters": params}}, default_flow_style=False
-                )
-                path = context.write_scratch_file("params_", ".yaml", text)
-                files[str(path)] = text
-                params = path
-            out += ["--params-file", str(params)]
-        for src, dst in context.scope.remaps:
-            out += ["-r", f"{src}:={dst}"]
-        for remap in self.remaps:
-            out += ["-r", f"{perform(remap.src, context)}:={perform(remap.dst, context)}"]
-        return out, files
-
-    def _params_key(self, context: LaunchContext, namespace: str) -> str:
-        """The node key of its generated params files: its full name when both its name and
-        namespace are known (as launch_ros writes it), else ``/**``."""
-        if self.node_name is None or not namespace:
-            return "/**"
-        return join_namespace(namespace, perform(self.node_name, context))
-
-    def _namespace(self, context: LaunchContext) -> str:
-        base = context.configurations.get(NAMESPACE_CONFIGURATION, "")
-        own = perform(self.namespace, context).strip() if self.namespace is not None else ""
-        if not own:
-            return join_namespace("", base) if base else ""
-        return join_namespace(base, own)
+    def full_name(self, context: LaunchContext) -> str:
+        """The node's fully qualified name (its ``name``, else the executable's)."""
+        name = perform(self.node_name, context) if self.node_name is not None else ""
+        name = name or os.path.basename(perform(self.exec, context))
+        own = perform(self.namespace, context).strip() if self.namespace is not None else None
+        namespace = ros_namespace(context.configurations.get(NAMESPACE_CONFIGURATION), own)
+        return join_namespace(namespace or "/", name)
 
     def execute(self, context: LaunchContext) -> None:
         """Hand the node's process to the runner."""
-        context.runner.start_process(self.evaluate(context))
+        start(self, self.evaluate(context), self.options, context)

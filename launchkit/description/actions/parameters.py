@@ -56,15 +56,23 @@ class ParamFile:
 
 @dataclass
 class ParamDict:
-    """A ``parameters=[{...}]`` dict of a Python ``Node``: its values share one params file."""
+    """A ``parameters=[{...}]`` dict of a Python ``Node``: its values share one params file
+    (a lone ``<param>`` of XML is one file of its own too)."""
 
     entries: list[ParamValue | ParamGroup] = field(default_factory=list)
 
 
-ParamEntry = ParamValue | ParamGroup | ParamFile | ParamDict
+@dataclass
+class ParamRule:
+    """``launch_ros.descriptions.Parameter(name, value)``: one ``-p name:=value`` item."""
+
+    param: ParamValue
+
+
+ParamEntry = ParamValue | ParamGroup | ParamFile | ParamDict | ParamRule
 
 #: One item of a node's evaluated parameters: values for one generated params file (dotted
-#: names), or a params file passed as it is.
+#: names; a ParamRule's one value), or a params file passed as it is.
 NodeParams = dict[str, Any] | Path
 
 
@@ -140,15 +148,20 @@ def evaluate_params(entries: list[ParamEntry], context: LaunchContext) -> list[N
 
     for entry in entries:
         if isinstance(entry, ParamFile):
-            evaluated.append(_params_file(entry, context))
+            evaluated.append(params_file(entry, context))
             continue
         values: dict[str, Any] = {}
-        visit(entry.entries if isinstance(entry, ParamDict) else [entry], "", values)
+        if isinstance(entry, ParamDict):
+            visit(entry.entries, "", values)
+        else:
+            visit([entry.param if isinstance(entry, ParamRule) else entry], "", values)
         evaluated.append(values)
     return evaluated
 
 
-def _params_file(entry: ParamFile, context: LaunchContext) -> Path:
+def params_file(entry: ParamFile, context: LaunchContext) -> Path:
+    """The file a ``<param from=...>`` names (a copy with its substitutions performed when
+    ``allow_substs``); an error when it does not exist."""
     path = Path(perform(entry.path, context))
     if not path.is_file():
         raise RuntimeLaunchError(

@@ -26,6 +26,22 @@ def join_namespace(base: str, namespace: str) -> str:
     return joined
 
 
+def ros_namespace(base: str | None, own: str | None) -> str | None:
+    """launch_ros's ``make_namespace_absolute(prefix_namespace(base, own))``: None when
+    neither is given."""
+    if base is None and own is None:
+        return None
+    if own is None:
+        combined = base or ""
+    elif not base or own.startswith("/"):
+        combined = own
+    else:
+        combined = ("" if base == "/" else base) + "/" + own
+    if combined != "/":
+        combined = combined.rstrip("/")
+    return combined if combined.startswith("/") else "/" + combined
+
+
 class PushRosNamespace(Action):
     """Prefix the namespace of later nodes in scope."""
 
@@ -41,11 +57,12 @@ class PushRosNamespace(Action):
         self.namespace = namespace
 
     def execute(self, context: LaunchContext) -> None:
-        """Push it (an empty namespace changes nothing)."""
+        """Push it: relative to the pushed one, absolute as given (launch_ros's rules)."""
         namespace = perform(self.namespace, context).strip()
-        if namespace:
-            base = context.configurations.get(NAMESPACE_CONFIGURATION, "")
-            context.configurations[NAMESPACE_CONFIGURATION] = join_namespace(base, namespace)
+        base = context.configurations.get(NAMESPACE_CONFIGURATION)
+        pushed = ros_namespace(base, namespace)
+        if pushed is not None:
+            context.configurations[NAMESPACE_CONFIGURATION] = pushed
 
 
 class SetParameter(Action):
@@ -112,17 +129,26 @@ class SetRemap(Action):
 
 
 class SetUseSimTime(Action):
-    """``use_sim_time`` for every later node in scope."""
+    """``<set_use_sim_time value>``: ``use_sim_time`` for every later node in scope, as a
+    global parameter. (Jazzy cannot run the tag; its Python ``SetUseSimTime`` sets only the
+    launch's own ROS clock, which the Python frontend's ``nodes=False`` follows.)"""
 
     TAG = "set_use_sim_time"
 
     def __init__(
-        self, value: Value, location: Location | None = None, condition: Condition | None = None
+        self,
+        value: Value,
+        location: Location | None = None,
+        condition: Condition | None = None,
+        *,
+        nodes: bool = True,
     ) -> None:
         super().__init__(location, condition)
         self.value = value
+        self.nodes = nodes
 
     def execute(self, context: LaunchContext) -> None:
-        """Record ``use_sim_time`` as a global parameter."""
+        """Check the value; record ``use_sim_time`` as a global parameter for the nodes."""
         value = typed_bool(self.value, context, "set_use_sim_time value", self.location)
-        context.scope.global_params.append(("use_sim_time", "true" if value else "false"))
+        if self.nodes:
+            context.scope.global_params.append(("use_sim_time", "true" if value else "false"))

@@ -19,6 +19,7 @@ class Timer(Action):
     (so a timer in a scoped group keeps the group's configurations, unlike ROS 2 Jazzy)."""
 
     TAG = "timer"
+    COMPLETES_LATER = True
 
     def __init__(
         self,

@@ -1,5 +1,6 @@
 """Stand-ins for the actions of ROS 2's ``launch`` package that launch files construct (its
-conditions and substitutions are in ``launch_substitutions.py``).
+processes are in ``process_api.py``, its event system in ``event_api.py``, its conditions and
+substitutions in ``launch_substitutions.py``).
 
 Each action class *is* the matching launchkit action (a thin subclass whose constructor takes
 the ROS keyword arguments), so the loaded file needs no translation step afterwards.
@@ -14,32 +15,42 @@ from launchkit.description import actions as lk
 from launchkit.description.actions.base import Action
 from launchkit.description.conditions import Condition
 from launchkit.description.launch_context import LaunchContext
-from launchkit.description.process_spec import ProcessSpec
-from launchkit.description.substitutions.base import perform
-from launchkit.errors import PackageNotFoundError
-from launchkit.frontend.python.values import (
-    argv_text,
-    here,
-    optional_value,
-    to_value,
-    unsupported,
-)
+from launchkit.errors import LaunchFileError, PackageNotFoundError
+from launchkit.frontend.python.values import here, optional_value, to_value
 from launchkit.packages import FoundPackage, PackageIndex
 
 # -- the description ---------------------------------------------------------------------------
 
 
 class LaunchDescription:
-    """``launch.LaunchDescription``: the list of actions ``generate_launch_description`` returns."""
+    """``launch.LaunchDescription``: the list of actions ``generate_launch_description`` returns
+    (also an entity an OpaqueFunction may return, or include)."""
 
-    def __init__(self, initial_entities: Iterable[Action] | None = None) -> None:
-        self.entities: list[Action] = list(initial_entities or [])
+    def __init__(self, initial_entities: Iterable[Any] | None = None, **_: Any) -> None:
+        self.entities: list[Any] = list(initial_entities or [])
 
     def add_action(self, action: Action) -> None:
         """Append one action."""
         self.entities.append(action)
 
     add_entity = add_action
+
+
+def flatten(entities: Any, what: str) -> list[Action]:
+    """``entities`` (an action, a LaunchDescription, None, or a list of them) as actions."""
+    if entities is None:
+        return []
+    if isinstance(entities, LaunchDescription):
+        return flatten(entities.entities, what)
+    if isinstance(entities, Action):
+        return [entities]
+    if isinstance(entities, Iterable) and not isinstance(entities, str):
+        return [action for item in entities for action in flatten(item, what)]
+    raise LaunchFileError(
+        f"{what} gave a {type(entities).__name__}, not a launch action",
+        here(),
+        expected="launch actions (DeclareLaunchArgument, Node, ExecuteProcess, ...)",
+    )
 
 
 # -- actions -----------------------------------------------------------------------------------
@@ -74,13 +85,27 @@ class SetLaunchConfiguration(lk.SetConfiguration):
         super().__init__(to_value(name), to_value(value), here(), condition)
 
 
+class UnsetLaunchConfiguration(Action):
+    """``launch.actions.UnsetLaunchConfiguration``."""
+
+    def __init__(self, name: Any, *, condition: Condition | None = None) -> None:
+        super().__init__(here(), condition)
+        self.name = to_value(name)
+
+    def execute(self, context: LaunchContext) -> None:
+        """Remove the configuration (no error when it is not set)."""
+        from launchkit.description.substitutions.base import perform
+
+        context.configurations.pop(perform(self.name, context), None)
+
+
 class LaunchDescriptionSource:
     """``launch.launch_description_sources.*LaunchDescriptionSource``: where a file is, and how
     to read it (``syntax``; the classes are in ``description_sources.py``)."""
 
     syntax: str | None = None
 
-    def __init__(self, launch_description_source: Any) -> None:
+    def __init__(self, launch_description_source: Any, *_: Any, **__: Any) -> None:
         self.location = to_value(launch_description_source)
 
 
@@ -114,75 +139,9 @@ class IncludeLaunchDescription(lk.Include):
         )
 
 
-def process_options(
-    *,
-    cwd: Any = None,
-    name: Any = None,
-    prefix: Any = None,
-    output: Any = None,
-    shell: bool | None = None,
-    emulate_tty: bool | None = None,
-    sigterm_timeout: Any = None,
-    sigkill_timeout: Any = None,
-    respawn: Any = None,
-    respawn_delay: Any = None,
-    respawn_max_retries: Any = None,
-    additional_env: Mapping[Any, Any] | None = None,
-    env: Mapping[Any, Any] | None = None,
-    on_exit: Any = None,
-) -> lk.ProcessOptions:
-    """The process keyword arguments ExecuteProcess and Node share, as ProcessOptions."""
-    if isinstance(on_exit, lk.Shutdown) or (
-        isinstance(on_exit, list) and len(on_exit) == 1 and isinstance(on_exit[0], lk.Shutdown)
-    ):
-        on_exit = "shutdown"  # on_exit=Shutdown() or [Shutdown()]: launchkit's on_exit="shutdown"
-    elif on_exit is not None and not isinstance(on_exit, str):
-        unsupported("on_exit with actions other than Shutdown()")()
-    environment = [
-        (to_value(k), to_value(v)) for k, v in {**(env or {}), **(additional_env or {})}.items()
-    ]
-    return lk.ProcessOptions(
-        cwd=optional_value(cwd),
-        name=optional_value(name),
-        launch_prefix=optional_value(prefix),
-        output=optional_value(output),
-        shell=optional_value(shell),
-        emulate_tty=optional_value(emulate_tty),
-        sigterm_timeout=optional_value(sigterm_timeout),
-        sigkill_timeout=optional_value(sigkill_timeout),
-        respawn=optional_value(respawn),
-        respawn_delay=optional_value(respawn_delay),
-        respawn_max_retries=optional_value(respawn_max_retries),
-        on_exit=optional_value(on_exit),
-        env=environment,
-    )
-
-
-class ExecuteProcess(lk.ExecuteProcess):
-    """``launch.actions.ExecuteProcess``: ``cmd`` is a list of words; empty words are dropped,
-    as ROS does, so ``PythonExpression`` can switch a flag off by yielding ''."""
-
-    def __init__(
-        self, *, cmd: Iterable[Any], condition: Condition | None = None, **options: Any
-    ) -> None:
-        words = list(cmd)
-        self.words = [to_value(word) for word in words]
-        super().__init__(argv_text(words), process_options(**options), here(), condition)
-
-    def evaluate(self, context: LaunchContext) -> ProcessSpec:
-        """The process, its argv built word by word."""
-        from launchkit.description.actions.executable import ProcessBuilder
-
-        builder = ProcessBuilder(self.options, context, self.location)
-        words = [w for w in (perform(word, context) for word in self.words) if w != ""]
-        if builder.flag(self.options.shell, False, "shell"):
-            text = " ".join(words)
-            return builder.build(["/bin/sh", "-c", text], words[0] if words else "sh", False)
-        return builder.build(words, words[0] if words else "", False)
-
-
 class GroupAction(lk.Group):
-    """``launch.actions.GroupAction``."""
+    """``launch.actions.GroupAction``: ``launch_configurations`` are set inside the group
+    (the only ones there when ``forwarding=False``)."""
 
     def __init__(
         self,
@@ -193,10 +152,84 @@ class GroupAction(lk.Group):
         launch_configurations: Mapping[Any, Any] | None = None,
         condition: Condition | None = None,
     ) -> None:
+        pairs = [(to_value(k), to_value(v)) for k, v in (launch_configurations or {}).items()]
+        location = here()
+        children = list(actions)
+        keeps: list[lk.Keep] = []
+        if scoped and not forwarding:
+            keeps = [lk.Keep(name, value) for name, value in pairs]
+        else:
+            sets = [lk.SetConfiguration(name, value, location) for name, value in pairs]
+            children = [*sets, *children]
+        super().__init__(children, scoped, forwarding, keeps, location, condition)
+
+
+class ResetLaunchConfigurations(lk.Reset):
+    """``launch.actions.ResetLaunchConfigurations``."""
+
+    def __init__(
+        self,
+        launch_configurations: Mapping[Any, Any] | None = None,
+        *,
+        condition: Condition | None = None,
+    ) -> None:
         keeps = [
             lk.Keep(to_value(k), to_value(v)) for k, v in (launch_configurations or {}).items()
         ]
-        super().__init__(list(actions), scoped, forwarding, keeps, here(), condition)
+        super().__init__(keeps, here(), condition)
+
+
+class _Push(Action):
+    """Push (``pop=False``) or pop the configurations or the environment of the scope."""
+
+    def __init__(self, *, condition: Condition | None = None) -> None:
+        super().__init__(here(), condition)
+
+
+class PushLaunchConfigurations(_Push):
+    """``launch.actions.PushLaunchConfigurations``: save the scope (configurations and ROS
+    globals); the matching Pop restores it."""
+
+    def execute(self, context: LaunchContext) -> None:
+        """Save a copy."""
+        context.saved_scopes.append(context.scope.copy())
+
+
+class PopLaunchConfigurations(_Push):
+    """``launch.actions.PopLaunchConfigurations``: back to the last pushed configurations
+    (the environment stays as it is)."""
+
+    def execute(self, context: LaunchContext) -> None:
+        """Restore."""
+        if context.saved_scopes:
+            saved = context.saved_scopes.pop()
+            saved.environment = context.scope.environment
+            context.scope = saved
+
+
+class PushEnvironment(_Push):
+    """``launch.actions.PushEnvironment``."""
+
+    def execute(self, context: LaunchContext) -> None:
+        """Save a copy of the environment."""
+        context.saved_environments.append(dict(context.environment))
+
+
+class PopEnvironment(_Push):
+    """``launch.actions.PopEnvironment``."""
+
+    def execute(self, context: LaunchContext) -> None:
+        """Restore the last pushed environment."""
+        if context.saved_environments:
+            context.environment.clear()
+            context.environment.update(context.saved_environments.pop())
+
+
+class ResetEnvironment(lk.ResetEnv):
+    """``launch.actions.ResetEnvironment``."""
+
+    def __init__(self, *, condition: Condition | None = None) -> None:
+        super().__init__(here(), condition)
 
 
 class LogInfo(lk.Log):

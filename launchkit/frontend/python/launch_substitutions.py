@@ -6,14 +6,14 @@ Each substitution class wraps the matching launchkit substitution; each conditio
 
 from __future__ import annotations
 
+import os
 from collections.abc import Iterable
 from typing import Any
 
 from launchkit.description.conditions import Condition
 from launchkit.description.launch_context import LaunchContext
-from launchkit.description.substitutions import And as AndSub
-from launchkit.description.substitutions import Anon as AnonSub
 from launchkit.description.substitutions import (
+    AllOf,
     AnyOf,
     Command,
     Dirname,
@@ -22,14 +22,28 @@ from launchkit.description.substitutions import (
     Eval,
     Filename,
     FindExec,
+    IfElse,
+    LogDir,
     Not,
     NotEquals,
     Text,
     Var,
 )
+from launchkit.description.substitutions import And as AndSub
+from launchkit.description.substitutions import Anon as AnonSub
+from launchkit.description.substitutions import FileContent as FileContentSub
 from launchkit.description.substitutions import Or as OrSub
-from launchkit.description.substitutions.base import Substitution, perform
-from launchkit.frontend.python.values import SubstitutionLike, here, to_value
+from launchkit.description.substitutions.base import Substitution, Value, describe, perform
+from launchkit.description.substitutions.local import Local
+from launchkit.errors import LaunchFileError, Location
+from launchkit.frontend.python.values import (
+    SubstitutionLike,
+    call_user,
+    current_modules,
+    here,
+    optional_value,
+    to_value,
+)
 
 # -- conditions --------------------------------------------------------------------------------
 
@@ -48,15 +62,38 @@ def UnlessCondition(predicate_expression: Any) -> Condition:
     return _condition(predicate_expression, True)
 
 
-def LaunchConfigurationEquals(name: str, expected_value: Any) -> Condition:
-    """``launch.conditions.LaunchConfigurationEquals``."""
-    test = Equals([(Var([to_value(name)]),), to_value(expected_value)])
+class _ConfigurationEquals(Substitution):
+    """``true`` when configuration ``name`` is exactly ``expected`` (text), or is unset and
+    ``expected`` is None: ROS's LaunchConfigurationEquals test."""
+
+    def __init__(self, name: str, expected: Value | None, negate: bool) -> None:
+        self.name = name
+        self.expected = expected
+        self.negate = negate
+        self.location = here()
+
+    def perform(self, context: LaunchContext) -> str:
+        """``true`` or ``false``."""
+        expected = None if self.expected is None else perform(self.expected, context)
+        equal = context.configurations.get(self.name) == expected
+        return "true" if equal != self.negate else "false"
+
+    def describe(self) -> str:
+        """How it was written."""
+        what = "LaunchConfigurationNotEquals" if self.negate else "LaunchConfigurationEquals"
+        expected = "None" if self.expected is None else describe(self.expected)
+        return f"{what}({self.name!r}, {expected!r})"
+
+
+def LaunchConfigurationEquals(launch_configuration_name: str, expected_value: Any) -> Condition:
+    """``launch.conditions.LaunchConfigurationEquals`` (exact text; None: unset)."""
+    test = _ConfigurationEquals(launch_configuration_name, optional_value(expected_value), False)
     return Condition((test,), False, here())
 
 
-def LaunchConfigurationNotEquals(name: str, expected_value: Any) -> Condition:
+def LaunchConfigurationNotEquals(launch_configuration_name: str, expected_value: Any) -> Condition:
     """``launch.conditions.LaunchConfigurationNotEquals``."""
-    test = NotEquals([(Var([to_value(name)]),), to_value(expected_value)])
+    test = _ConfigurationEquals(launch_configuration_name, optional_value(expected_value), True)
     return Condition((test,), False, here())
 
 
@@ -84,6 +121,80 @@ class TextSubstitution(SubstitutionLike):
 
     def __init__(self, *, text: str) -> None:
         super().__init__(Text(text))
+        self.text = text
+
+
+class LocalSubstitution(SubstitutionLike):
+    """``launch.substitutions.LocalSubstitution('event.reason')``: a local of the context (the
+    event, in a handler's actions), by attribute path."""
+
+    def __init__(self, expression: str, description: str | None = None) -> None:
+        super().__init__(Local(expression, description, here()))
+
+
+class FileContent(SubstitutionLike):
+    """``launch.substitutions.FileContent``."""
+
+    def __init__(self, path: Any) -> None:
+        super().__init__(FileContentSub([to_value(path)], here()))
+
+
+class LaunchLogDir(SubstitutionLike):
+    """``launch.substitutions.LaunchLogDir``: this run's log directory."""
+
+    def __init__(self) -> None:
+        super().__init__(LogDir([], here()))
+
+
+class IfElseSubstitution(SubstitutionLike):
+    """``launch.substitutions.IfElseSubstitution``."""
+
+    def __init__(self, condition: Any, if_value: Any = "", else_value: Any = "") -> None:
+        if if_value == else_value == "":
+            raise LaunchFileError(
+                "IfElseSubstitution has neither if_value nor else_value",
+                here(),
+                expected="if_value=... or else_value=...",
+            )
+        args = [to_value(condition), to_value(if_value), to_value(else_value)]
+        super().__init__(IfElse(args, here()))
+
+
+class SubstitutionFailure(RuntimeError):
+    """``launch.substitutions.SubstitutionFailure``: raise it from a function to fail."""
+
+
+class Substitution_(SubstitutionLike):
+    """``launch.Substitution``: base of a launch file's own substitution classes, which
+    define ``perform(self, context)`` (and ``describe``)."""
+
+    def __init__(self) -> None:
+        super().__init__(_UserSubstitution(self, here()))
+
+    def perform(self, context: Any) -> str:
+        """Overridden by the subclass."""
+        raise NotImplementedError(f"{type(self).__name__} does not define perform()")
+
+
+class _UserSubstitution(Substitution):
+    """Calls a launch file's own substitution's ``perform`` with the context view."""
+
+    def __init__(self, owner: Substitution_, location: Location | None) -> None:
+        self.owner = owner
+        self.location = location
+        self._modules = current_modules()
+
+    def perform(self, context: LaunchContext) -> str:
+        """What the user's ``perform`` returns."""
+        from launchkit.frontend.python.context_view import LaunchContextView
+
+        what = f"{type(self.owner).__name__}.perform"
+        result = call_user(self.owner.perform, what, self._modules, LaunchContextView(context))
+        return str(result)
+
+    def describe(self) -> str:
+        """The class name."""
+        return f"{type(self.owner).__name__}()"
 
 
 class PythonExpression(SubstitutionLike):
@@ -99,30 +210,30 @@ class PythonExpression(SubstitutionLike):
 
 
 class PathJoinSubstitution(SubstitutionLike):
-    """``launch.substitutions.PathJoinSubstitution``."""
+    """``launch.substitutions.PathJoinSubstitution``: the parts joined as ``os.path.join``
+    does (an absolute part starts the path over). A part may itself be a list, concatenated
+    first (as later ROS releases allow; Jazzy refuses it)."""
 
     def __init__(self, substitutions: Iterable[Any]) -> None:
-        parts: list[Any] = []
-        for index, item in enumerate(substitutions):
-            if index:
-                parts.append("/")
-            parts.append(item)
-        super().__init__(_Joined(to_value(parts)))
+        items = [substitutions] if isinstance(substitutions, str) else list(substitutions)
+        super().__init__(_PathJoin([to_value(item) for item in items], here()))
 
 
-class _Joined(Substitution):
-    """A concatenation behaving as one substitution (what PathJoinSubstitution yields)."""
+class _PathJoin(Substitution):
+    """The parts performed, then joined with ``os.path.join``."""
 
-    def __init__(self, value: tuple[Any, ...]) -> None:
-        self.value = value
+    def __init__(self, parts: list[Value], location: Location | None) -> None:
+        self.parts = parts
+        self.location = location
 
     def perform(self, context: LaunchContext) -> str:
-        """The parts performed and joined."""
-        return perform(self.value, context)
+        """The joined path."""
+        texts = [perform(part, context) for part in self.parts]
+        return os.path.join(*texts) if texts else ""
 
     def describe(self) -> str:
-        """The parts, described."""
-        return "".join(part.describe() for part in self.value)
+        """``PathJoin('a' + 'b')`` as ROS describes it."""
+        return "PathJoin(" + " + ".join(describe(part) for part in self.parts) + ")"
 
 
 class Command_(SubstitutionLike):
@@ -189,8 +300,22 @@ class AnySubstitution(SubstitutionLike):
         super().__init__(AnyOf([to_value(a) for a in args], here()))
 
 
+class AllSubstitution(SubstitutionLike):
+    """``launch.substitutions.AllSubstitution``."""
+
+    def __init__(self, *args: Any) -> None:
+        super().__init__(AllOf([to_value(a) for a in args], here()))
+
+
 class EqualsSubstitution(SubstitutionLike):
-    """``launch.substitutions.EqualsSubstitution``."""
+    """``launch.substitutions.EqualsSubstitution`` (as booleans, then numbers, then text)."""
 
     def __init__(self, left: Any, right: Any) -> None:
         super().__init__(Equals([to_value(left), to_value(right)], here()))
+
+
+class NotEqualsSubstitution(SubstitutionLike):
+    """``launch.substitutions.NotEqualsSubstitution``."""
+
+    def __init__(self, left: Any, right: Any) -> None:
+        super().__init__(NotEquals([to_value(left), to_value(right)], here()))

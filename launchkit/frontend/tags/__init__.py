@@ -1,6 +1,7 @@
 """Tag parsers: one function per tag, turning an entity of any syntax into its action.
 
-``launch.py`` has the tags of ROS 2's ``launch`` package, ``ros.py`` those of ``launch_ros``.
+``launch.py`` has the tags of ROS 2's ``launch`` package, ``ros.py`` and ``composition.py``
+those of ``launch_ros``.
 Each module lists its tags in ``TAGS`` and adds them to an :class:`ActionParser` with
 ``register``; :func:`standard_parser` is a parser with all of them.
 """
@@ -8,7 +9,7 @@ Each module lists its tags in ``TAGS`` and adds them to an :class:`ActionParser`
 from __future__ import annotations
 
 from launchkit.frontend.action_parser import ActionParser
-from launchkit.frontend.tags import launch, ros
+from launchkit.frontend.tags import composition, launch, ros
 
 
 def standard_parser() -> ActionParser:
@@ -16,6 +17,7 @@ def standard_parser() -> ActionParser:
     parser = ActionParser()
     launch.register(parser)
     ros.register(parser)
+    composition.register(parser)
     return parser
 
 

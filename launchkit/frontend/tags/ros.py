@@ -16,6 +16,7 @@ from launchkit.description.actions import (
     SetRemap,
     SetUseSimTime,
 )
+from launchkit.description.actions.composition import ComposableNodeContainer
 from launchkit.description.actions.parameters import PARAM_TYPES, ParamEntry
 from launchkit.frontend.tags.launch import leaf, only_children, parse_process_options
 
@@ -81,10 +82,12 @@ def _no_file(entity: Entity, param: ParamValue | ParamGroup | ParamFile) -> Para
     return param
 
 
-def parse_node(entity: Entity, parser: ActionParser) -> Action:
+def parse_node(entity: Entity, parser: ActionParser, skip: tuple[str, ...] = ()) -> Action:
     """``<node pkg exec name namespace exec_name args ros_args ...>`` with ``<param>``,
-    ``<remap>`` and ``<env>`` children."""
-    children = only_children(entity, ("param", "remap", "env"))
+    ``<remap>`` and ``<env>`` children (``skip``: children another parser reads; their tag
+    also makes the node a ``<node_container>``)."""
+    allowed = ("param", "remap", "env")
+    children = [c for c in only_children(entity, allowed + skip) if c.tag in allowed]
     params: list[ParamEntry] = [parse_param(c) for c in children if c.tag == "param"]
     remaps = []
     for child in children:
@@ -94,7 +97,8 @@ def parse_node(entity: Entity, parser: ActionParser) -> Action:
     node_name = entity.value("name")
     options = parse_process_options(entity)
     options.name = None  # `name` is the ROS node name here, not the process label
-    return ExecuteNode(
+    kind = ComposableNodeContainer if skip else ExecuteNode
+    return kind(
         entity.value("pkg"),
         entity.required("exec", 'exec="EXECUTABLE"'),
         options,

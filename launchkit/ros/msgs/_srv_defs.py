@@ -57,4 +57,31 @@ SERVICES: dict[str, str] = {
     "sensor_msgs/srv/SetCameraInfo": (
         "sensor_msgs/CameraInfo camera_info\n---\nbool success\nstring status_message\n"
     ),
+    "lifecycle_msgs/srv/ChangeState": "lifecycle_msgs/Transition transition\n---\nbool success\n",
+    "lifecycle_msgs/srv/GetState": "---\nlifecycle_msgs/State current_state\n",
+    "lifecycle_msgs/srv/GetAvailableStates": "---\nlifecycle_msgs/State[] available_states\n",
+    "lifecycle_msgs/srv/GetAvailableTransitions": (
+        "---\nlifecycle_msgs/TransitionDescription[] available_transitions\n"
+    ),
+    # composition_interfaces has no wheel to check against; field names as upstream, including
+    # its "error_messsage" (three s), which the type hash depends on.
+    "composition_interfaces/srv/LoadNode": (
+        "string package_name\n"
+        "string plugin_name\n"
+        "string node_name\n"
+        "string node_namespace\n"
+        "uint8 log_level\n"
+        "string[] remap_rules\n"
+        "rcl_interfaces/Parameter[] parameters\n"
+        "rcl_interfaces/Parameter[] extra_arguments\n"
+        "---\n"
+        "bool success\n"
+        "string error_messsage\n"
+        "string full_node_name\n"
+        "uint64 unique_id\n"
+    ),
+    "composition_interfaces/srv/UnloadNode": (
+        "uint64 unique_id\n---\nbool success\nstring error_messsage\n"
+    ),
+    "composition_interfaces/srv/ListNodes": "---\nstring[] full_node_names\nuint64[] unique_ids\n",
 }

@@ -21,5 +21,8 @@ PACKAGE = PythonPackage(
         "spawn_entity.py": "launchkit.stock.gazebo_ros.spawn_entity",
         "diff_drive": "launchkit.stock.gazebo_ros.diff_drive_node",
         "camera": "launchkit.stock.gazebo_ros.camera_node",
+        "gzclient": "launchkit.stock.gazebo_ros.gzclient",
     },
+    # what `ExecuteProcess(cmd=['gazebo', ...])` runs where Gazebo is not installed
+    programs={"gazebo": "gazebo", "gzserver": "gzserver", "gzclient": "gzclient"},
 )

@@ -10,4 +10,5 @@ PACKAGE = PythonPackage(
     name="rviz2",
     share=Path(__file__).resolve().parent,
     executables={"rviz2": "launchkit.stock.rviz2.node"},
+    programs={"rviz2": "rviz2"},
 )

@@ -1,0 +1,195 @@
+"""Process tests: lifecycle nodes driven by launch events, and components loaded into
+containers through composition_interfaces/srv/LoadNode, as launch_ros does."""
+
+from __future__ import annotations
+
+import os
+import stat
+import sys
+from collections.abc import Callable, Iterator
+from pathlib import Path
+
+import pytest
+
+from launchkit.testing._isolation import domain_id, free_loopback_port, router_endpoint
+from tests.engine.launcher import Launcher, wait_gone
+
+LIFECYCLE_TALKER = """
+import sys
+import launchkit.ros as ros
+from launchkit.ros.lifecycle import LifecycleNode, TransitionCallbackReturn
+
+
+class Talker(LifecycleNode):
+    def on_configure(self, state):
+        self.get_logger().info('configured')
+        return TransitionCallbackReturn.SUCCESS
+
+    def on_activate(self, state):
+        self.get_logger().info('activated')
+        return super().on_activate(state)
+
+
+ros.init(sys.argv)
+node = Talker('talker')
+try:
+    ros.spin(node)
+finally:
+    ros.shutdown()
+"""
+
+LIFECYCLE_LAUNCH = """
+import sys
+
+import launch
+import lifecycle_msgs.msg
+from launch import LaunchDescription
+from launch.actions import EmitEvent, LogInfo, RegisterEventHandler
+from launch_ros.actions import LifecycleNode, LifecycleTransition
+from launch_ros.event_handlers import OnStateTransition
+from launch_ros.events.lifecycle import ChangeState
+
+
+def generate_launch_description():
+    talker = LifecycleNode(name='lc_talker', namespace='demo', executable=sys.executable,
+                           arguments=['TALKER'], output='screen')
+    second = LifecycleNode(name='second', namespace='', executable=sys.executable,
+                           arguments=['TALKER'], output='screen')
+    return LaunchDescription([
+        RegisterEventHandler(OnStateTransition(
+            target_lifecycle_node=talker, goal_state='inactive',
+            entities=[
+                LogInfo(msg="'lc_talker' reached 'inactive', activating"),
+                EmitEvent(event=ChangeState(
+                    lifecycle_node_matcher=launch.events.matches_action(talker),
+                    transition_id=lifecycle_msgs.msg.Transition.TRANSITION_ACTIVATE)),
+            ])),
+        RegisterEventHandler(OnStateTransition(
+            target_lifecycle_node=talker, start_state='activating', goal_state='active',
+            entities=[LogInfo(msg="'lc_talker' is active")])),
+        RegisterEventHandler(OnStateTransition(
+            target_lifecycle_node=second, goal_state='active',
+            entities=[LogInfo(msg="'second' is active")])),
+        talker,
+        second,
+        EmitEvent(event=ChangeState(
+            lifecycle_node_matcher=launch.events.matches_action(talker),
+            transition_id=lifecycle_msgs.msg.Transition.TRANSITION_CONFIGURE)),
+        LifecycleTransition(lifecycle_node_names=['second'], transition_ids=[1, 3]),
+    ])
+"""
+
+COMPOSITION_LAUNCH = """
+from launch import LaunchDescription
+from launch_ros.actions import ComposableNodeContainer, LoadComposableNodes
+from launch_ros.descriptions import ComposableNode
+
+
+def generate_launch_description():
+    container = ComposableNodeContainer(
+        name='box', namespace='', package='PACKAGE', executable='component_container',
+        output='screen',
+        composable_node_descriptions=[
+            ComposableNode(package='composition', plugin='composition::Talker', name='talker',
+                           remappings=[('chatter', 'news')]),
+        ])
+    return LaunchDescription([
+        container,
+        LoadComposableNodes(target_container=container, composable_node_descriptions=[
+            ComposableNode(package='composition', plugin='composition::Listener', name='ear',
+                           namespace='robot', remappings=[('chatter', '/news')]),
+            ComposableNode(package='nowhere', plugin='nowhere::Nothing', name='ghost'),
+        ]),
+    ])
+"""
+
+
+@pytest.fixture
+def start(tmp_path: Path) -> Iterator[Callable[..., Launcher]]:
+    """``launchkit run`` on a Python launch file, on a router and domain of its own."""
+    started: list[Launcher] = []
+
+    def run(code: str, env: dict[str, str] | None = None) -> Launcher:
+        path = tmp_path / "managed.launch.py"
+        path.write_text(code)
+        isolation = {
+            "LAUNCHKIT_ROUTER": router_endpoint(free_loopback_port()),
+            "ROS_DOMAIN_ID": str(domain_id()),
+            "ROS_LOG_DIR": str(tmp_path),
+        }
+        launcher = Launcher(str(path), cwd=tmp_path, env={**isolation, **(env or {})})
+        started.append(launcher)
+        return launcher
+
+    yield run
+    for launcher in started:
+        if launcher.proc.poll() is None:
+            launcher.kill()
+        launcher.close()
+        wait_gone(list(launcher.pids.values()))
+
+
+def test_lifecycle_nodes_follow_launch_events(
+    start: Callable[..., Launcher], tmp_path: Path
+) -> None:
+    script = tmp_path / "talker.py"
+    script.write_text(LIFECYCLE_TALKER)
+    launcher = start(LIFECYCLE_LAUNCH.replace("'TALKER'", repr(str(script))))
+    launcher.wait_line("[INFO] [launch.user]: 'lc_talker' is active", timeout=30)
+    launcher.wait_line("[INFO] [launch.user]: 'second' is active", timeout=30)
+    lines = launcher.lines
+
+    def at(text: str) -> int:
+        found = [i for i, line in enumerate(lines) if text in line]
+        assert found, f"no line with {text!r} in:\n" + "\n".join(lines)
+        return found[0]
+
+    assert at("[demo.lc_talker]: configured") < at("'lc_talker' reached 'inactive'")
+    assert at("'lc_talker' reached 'inactive'") < at("[demo.lc_talker]: activated")
+    assert at("[demo.lc_talker]: activated") < at("'lc_talker' is active")
+    assert at("[second]: configured") < at("[second]: activated") < at("'second' is active")
+    launcher.signal(2)
+    assert launcher.finish() == 0
+
+
+def test_components_load_into_a_container(start: Callable[..., Launcher]) -> None:
+    launcher = start(COMPOSITION_LAUNCH.replace("PACKAGE", "rclcpp_components"))
+    loaded = "[INFO] [launch_ros.actions.load_composable_nodes]: Loaded node"
+    launcher.wait_line(f"{loaded} '/talker' in container '/box'", timeout=30)
+    launcher.wait_line(f"{loaded} '/robot/ear' in container '/box'", timeout=30)
+    failed = launcher.wait_line(
+        "Failed to load node 'ghost' of type 'nowhere::Nothing'", timeout=30
+    )
+    assert failed.startswith("[ERROR] [launch_ros.actions.load_composable_nodes]")
+    assert "no launchkit component 'nowhere::Nothing'" in failed
+    heard = launcher.wait_line("[robot.ear]: I heard: [Hello World:", timeout=30)
+    assert heard.startswith("[component_container-1] ")  # one process holds both components
+    assert sum("process started" in line for line in launcher.lines) == 1
+    launcher.signal(2)
+    assert launcher.finish() == 0
+
+
+def test_a_ros_package_container_is_loaded_through_its_service(
+    start: Callable[..., Launcher], tmp_path: Path
+) -> None:
+    # An AMENT_PREFIX_PATH package whose container executable is a program of its own (here a
+    # script running launchkit's container): launchkit starts it and loads over LoadNode.
+    prefix = tmp_path / "install"
+    (prefix / "share" / "ament_index" / "resource_index" / "packages").mkdir(parents=True)
+    (prefix / "share" / "ament_index" / "resource_index" / "packages" / "my_components").touch()
+    (prefix / "share" / "my_components").mkdir()
+    program = prefix / "lib" / "my_components" / "component_container"
+    program.parent.mkdir(parents=True)
+    program.write_text(
+        f'#!/bin/sh\nexec {sys.executable} -m launchkit.stock.rclcpp_components.container "$@"\n'
+    )
+    program.chmod(program.stat().st_mode | stat.S_IEXEC)
+    env = {
+        "AMENT_PREFIX_PATH": os.pathsep.join([str(prefix), os.environ.get("AMENT_PREFIX_PATH", "")])
+    }
+    launcher = start(COMPOSITION_LAUNCH.replace("PACKAGE", "my_components"), env)
+    launcher.wait_line("[INFO] [component_container-1]: process started", timeout=30)
+    launcher.wait_line("Loaded node '/talker' in container '/box'", timeout=30)
+    launcher.wait_line("Loaded node '/robot/ear' in container '/box'", timeout=30)
+    launcher.signal(2)
+    assert launcher.finish() == 0
