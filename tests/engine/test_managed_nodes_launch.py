@@ -144,10 +144,13 @@ def test_lifecycle_nodes_follow_launch_events(
         assert found, f"no line with {text!r} in:\n" + "\n".join(lines)
         return found[0]
 
-    assert at("[demo.lc_talker]: configured") < at("'lc_talker' reached 'inactive'")
-    assert at("'lc_talker' reached 'inactive'") < at("[demo.lc_talker]: activated")
-    assert at("[demo.lc_talker]: activated") < at("'lc_talker' is active")
-    assert at("[second]: configured") < at("[second]: activated") < at("'second' is active")
+    # A node's own lines come through its pipe and the launcher's through Zenoh events: only
+    # the order within each channel is causal (the launcher may hear a transition before it
+    # reads the line the node printed on the way).
+    assert at("[demo.lc_talker]: configured") < at("[demo.lc_talker]: activated")
+    assert at("'lc_talker' reached 'inactive'") < at("'lc_talker' is active")
+    assert at("[second]: configured") < at("[second]: activated")
+    at("'second' is active")
     launcher.signal(2)
     assert launcher.finish() == 0
 
