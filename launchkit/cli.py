@@ -163,6 +163,11 @@ def _guarded(action: object, debug: bool) -> int:
         return error.exit_status
     except KeyboardInterrupt as interrupt:  # launchkit's Interrupted says which signal
         return 128 + getattr(interrupt, "signum", signal.SIGINT)
+    except BrokenPipeError:
+        # the reader went away (`launchkit run FILE --print | head`): stop writing, quietly, with
+        # the status a shell gives a program killed by SIGPIPE
+        os.dup2(os.open(os.devnull, os.O_WRONLY), sys.stdout.fileno())
+        return 128 + signal.SIGPIPE
 
 
 def _ros_command(command: str, argv: list[str]) -> int:

@@ -2,6 +2,9 @@
 
 from __future__ import annotations
 
+import os
+import subprocess
+import sys
 from pathlib import Path
 
 import pytest
@@ -39,6 +42,27 @@ def test_print_shows_processes_and_runs_nothing(tmp_path: Path) -> None:
     assert "env: WHO=you" in out
     assert "timer after 2 s:" in out and "cmd: echo later" in out
     assert not marker.exists()
+
+
+def test_print_into_a_reader_that_stops_early_ends_quietly(tmp_path: Path) -> None:
+    """``launchkit run FILE --print | head -1``: the status of a SIGPIPE, no traceback."""
+    path = tmp_path / "big.launch.xml"
+    body = "".join(f'  <executable name="p{n}" cmd="true"/>\n' for n in range(3000))
+    path.write_text(f"<launch>\n{body}</launch>\n")
+    read, write = os.pipe()
+    proc = subprocess.Popen(
+        [sys.executable, "-m", "launchkit", "run", str(path), "--print"],
+        cwd=tmp_path,
+        stdout=write,
+        stderr=subprocess.PIPE,
+        text=True,
+    )
+    os.close(write)
+    with os.fdopen(read) as reader:
+        assert reader.readline()  # the first line, then the reader goes away
+    _, stderr = proc.communicate(timeout=60)
+    assert "Traceback" not in stderr and "BrokenPipeError" not in stderr, stderr
+    assert proc.returncode == 141
 
 
 def test_show_args_lists_defaults_descriptions_and_choices(tmp_path: Path) -> None:
