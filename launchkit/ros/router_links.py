@@ -4,7 +4,8 @@ Zenoh retries a ``connect`` endpoint silently, whether the other host is down, t
 or the other router refused this host's certificate; the user would see only a quiet graph.
 :class:`LinkWatch` looks at the session's links twice a second and reports, per endpoint,
 ``linked to ...``, ``lost the link to ...``, and once, if it never came up,
-``no link to ... yet``.
+``no link to ... yet``. A link is known by the other router's id and this side's socket, so a
+router that restarts between two looks still shows as a lost link and a new one.
 """
 
 from __future__ import annotations
@@ -50,32 +51,45 @@ class LinkWatch:
 
     def linked(self) -> set[str]:
         """The endpoints with a link up now."""
+        return set(self._links())
+
+    def _links(self) -> dict[str, frozenset[tuple[str, str]]]:
+        """Per endpoint with a link up now, the (other router's id, local socket) of its links."""
         try:
             links = list(self._session.info.links())
         except Exception:  # the session closed under us
-            return set()
-        present = set()
+            return {}
+        present: dict[tuple[str, str, int], set[tuple[str, str]]] = {}
         for link in links:
             try:
                 host, _ = host_port(str(link.dst))
             except ValueError:
                 continue
-            present.add(_key(str(link.dst), host))
-        return {endpoint for endpoint, keys in self._wanted.items() if keys & present}
+            identity = (str(getattr(link, "zid", "")), str(getattr(link, "src", "")))
+            present.setdefault(_key(str(link.dst), host), set()).add(identity)
+        found = {}
+        for endpoint, keys in self._wanted.items():
+            identities = frozenset().union(*(present.get(key, set()) for key in keys))
+            if identities:
+                found[endpoint] = identities
+        return found
 
     def _run(self) -> None:
-        up: set[str] = set()
+        up: dict[str, frozenset[tuple[str, str]]] = {}
         warned: set[str] = set()
         waited = 0.0
         while not self._stop.wait(PERIOD):
             waited += PERIOD
-            now = self.linked()
-            for endpoint in sorted(now - up):
-                self._report("info", f"linked to the router at {endpoint}")
-            for endpoint in sorted(up - now):
+            links = self._links()
+            now = set(links)
+            # a link replaced between two looks (the other router restarted) was lost too
+            renewed = {e for e in now & set(up) if not links[e] & up[e]}
+            for endpoint in sorted((set(up) - now) | renewed):
                 self._report("warn", f"lost the link to the router at {endpoint}; retrying")
+            for endpoint in sorted((now - set(up)) | renewed):
+                self._report("info", f"linked to the router at {endpoint}")
             if waited >= FIRST_WARNING:
-                for endpoint in sorted(set(self._wanted) - now - up - warned):
+                for endpoint in sorted(set(self._wanted) - now - set(up) - warned):
                     self._report(
                         "warn",
                         f"no link to the router at {endpoint} yet (not running, unreachable, "
@@ -83,7 +97,7 @@ class LinkWatch:
                     )
                     warned.add(endpoint)
             warned |= now
-            up = now
+            up = links
 
     def close(self) -> None:
         """Stop watching."""
