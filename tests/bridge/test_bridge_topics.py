@@ -112,7 +112,12 @@ def test_qos_is_mirrored_to_the_other_side(
     def bridged() -> list[Any]:
         return dds.node.get_publishers_info_by_topic("/lk_sensor")
 
-    wait_until(lambda: bool(bridged()), WAIT, "the bridge's DDS publisher of /lk_sensor")
+    # DDS lists an endpoint before the participant's node names arrive on ros_discovery_info
+    # (until then rclpy shows _NODE_NAME_UNKNOWN_): wait for both
+    def named() -> bool:
+        return any(info.node_name != "_NODE_NAME_UNKNOWN_" for info in bridged())
+
+    wait_until(named, WAIT, "the bridge's named DDS publisher of /lk_sensor")
     (info,) = bridged()
     assert info.qos_profile.reliability == Reliability.BEST_EFFORT
     assert info.qos_profile.durability == Durability.VOLATILE
