@@ -78,7 +78,9 @@ def test_a_signal_during_a_timer_command_stops_the_launch(run, tmp_path: Path) -
         executable("py", "import time; print('ready', flush=True); time.sleep(300)")
         + f'\n<timer period="0.1"><log message="$(command \'{command}\')"/></timer>'
     )
-    launcher.wait_line("[py-1] ready")
+    # the timer's $(command) holds the launcher's loop, as in ROS 2 launch: on a busy machine it
+    # may start before py's "ready" is read, so wait for py's start line and the command instead
+    launcher.wait_line("[py-1]: process started with pid")
     command_pid = int(_wait_for_file(marker))
     launcher.signal(signal.SIGINT)
     assert launcher.finish(timeout=30) == 0
