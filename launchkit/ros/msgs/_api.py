@@ -8,7 +8,8 @@ from typing import Any
 from rosbags.serde import SerdeError
 
 from launchkit.errors import UserError
-from launchkit.ros.msgs._typestore import typestore
+from launchkit.ros.msgs._srv_defs import SERVICES
+from launchkit.ros.msgs._typestore import needs_services, typestore
 
 _CDR_HEADER_LEN = 4
 
@@ -45,10 +46,10 @@ def normalize_type_name(name: str, kind: str = "msg") -> str:
 
 def type_names(kind: str = "msg") -> list[str]:
     """Every known type name of a kind (``msg`` or ``srv``), sorted."""
-    ts = typestore()
+    names = list(typestore(services=kind != "msg").types)  # a copy: services may be added
     if kind == "msg":
-        return sorted(n for n in ts.types if "/msg/" in n)
-    return sorted(n for n in ts.types if "/srv/" in n and not n.endswith(_SRV_PARTS))
+        return sorted(n for n in names if "/msg/" in n)
+    return sorted(n for n in names if "/srv/" in n and not n.endswith(_SRV_PARTS))
 
 
 _SRV_PARTS = ("_Request", "_Response", "_Event")
@@ -56,14 +57,15 @@ _SRV_PARTS = ("_Request", "_Response", "_Event")
 
 def packages() -> set[str]:
     """Names of the packages that have message or service types."""
-    return {name.split("/", 1)[0] for name in typestore().types}
+    names = [*typestore(services=False).types, *SERVICES]  # without registering the services
+    return {name.split("/", 1)[0] for name in names}
 
 
 def get_message(name: str) -> Any:
     """The message class for ``pkg/msg/Name`` (or ``pkg/Name``)."""
     full = normalize_type_name(name, "msg")
     try:
-        return typestore().types[full]
+        return typestore(services=needs_services(full)).types[full]
     except KeyError:
         raise MessageTypeError(
             f"unknown message type {name!r} (expected a ROS 2 Jazzy type such as "
@@ -108,12 +110,13 @@ def message_type_name(msg_or_cls: Any) -> str:
 
 def serialize(msg: Any, type_name: str | None = None) -> bytes:
     """CDR bytes (little endian, with the 4-byte encapsulation header) of a message."""
-    return bytes(typestore().serialize_cdr(msg, type_name or msg.__msgtype__))
+    name = type_name or msg.__msgtype__
+    return bytes(typestore(services=needs_services(name)).serialize_cdr(msg, name))
 
 
 def deserialize(data: bytes | memoryview, type_name: str) -> Any:
     """Decode CDR bytes (with header) into a message of ``type_name`` (``pkg/msg/Name``)."""
-    ts = typestore()
+    ts = typestore(services=needs_services(type_name))
     try:
         return ts.deserialize_cdr(data, type_name)
     except SerdeError as exc:
@@ -134,10 +137,11 @@ def type_hash(type_name: str) -> str:
 
 @functools.cache
 def _hash(type_name: str) -> str:
-    return str(typestore().hash_rihs01(type_name))
+    return str(typestore(services=needs_services(type_name)).hash_rihs01(type_name))
 
 
 def message_definition(type_name: str) -> str:
     """The ``.msg`` text of a type with its dependencies (as MCAP/Foxglove ``ros2msg`` want)."""
-    text, _ = typestore().generate_msgdef(type_name, ros_version=2)
+    ts = typestore(services=needs_services(type_name))
+    text, _ = ts.generate_msgdef(type_name, ros_version=2)
     return str(text)

@@ -44,27 +44,48 @@ _MSG_DEFAULTS: dict[str, dict[str, Any]] = {
 
 _lock = threading.Lock()
 _store: Typestore | None = None
+_services_registered = False
 
 
-def typestore() -> Typestore:
-    """The process-wide typestore (built on first use: about 0.1 s)."""
-    global _store
+def typestore(services: bool = True) -> Typestore:
+    """The process-wide typestore (built on first use).
+
+    ``services=False`` is enough for anything about a message type (``pkg/msg/...``): parsing
+    and registering launchkit's service types (generated code for 4 types per service) takes
+    more time than building the message types, and a process that uses no service, such as
+    ``launchkit topic echo``, need not wait for it. Asking with ``services=True`` later adds
+    them (once).
+    """
+    global _store, _services_registered
     with _lock:
         if _store is None:
             _store = _build()
+        if services and not _services_registered:
+            _register_services(_store)
+            _services_registered = True
         return _store
+
+
+def needs_services(type_name: str) -> bool:
+    """Whether looking up ``type_name`` needs the service types (``pkg/srv/...``)."""
+    return "/srv/" in type_name
 
 
 def _build() -> Typestore:
     ts = get_typestore(Stores.ROS2_JAZZY)
     _chars_as_uint8(ts)
+    for cls_name in list(ts.types):
+        _make_rclpy_like(ts, cls_name)
+    return ts
+
+
+def _register_services(ts: Typestore) -> None:
     services: dict[str, Any] = {}
     for name, text in SERVICES.items():
         services.update(_service_types(name, text))
     ts.register(services)  # at once: each register() generates and compiles code
-    for cls_name in list(ts.types):
+    for cls_name in services:
         _make_rclpy_like(ts, cls_name)
-    return ts
 
 
 def _chars_as_uint8(ts: Typestore) -> None:
