@@ -5,13 +5,10 @@ from __future__ import annotations
 import functools
 from typing import Any
 
-from rosbags.serde import SerdeError
-
 from launchkit.errors import UserError
+from launchkit.ros.msgs._codec import codec
 from launchkit.ros.msgs._srv_defs import SERVICES
 from launchkit.ros.msgs._typestore import needs_services, typestore
-
-_CDR_HEADER_LEN = 4
 
 
 class MessageTypeError(UserError):
@@ -110,24 +107,12 @@ def message_type_name(msg_or_cls: Any) -> str:
 
 def serialize(msg: Any, type_name: str | None = None) -> bytes:
     """CDR bytes (little endian, with the 4-byte encapsulation header) of a message."""
-    name = type_name or msg.__msgtype__
-    return bytes(typestore(services=needs_services(name)).serialize_cdr(msg, name))
+    return bytes(codec(type_name or msg.__msgtype__).serialize(msg))
 
 
 def deserialize(data: bytes | memoryview, type_name: str) -> Any:
     """Decode CDR bytes (with header) into a message of ``type_name`` (``pkg/msg/Name``)."""
-    ts = typestore(services=needs_services(type_name))
-    try:
-        return ts.deserialize_cdr(data, type_name)
-    except SerdeError as exc:
-        if "size mismatch" not in str(exc):
-            raise
-    # Fast CDR pads before an empty trailing 8-byte sequence; rosbags' size check rejects that
-    # valid message, so decode with the low-level function and accept the trailing padding.
-    msgdef = ts.get_msgdef(type_name)
-    decode = msgdef.deserialize_cdr_le if data[1] else msgdef.deserialize_cdr_be
-    message, _ = decode(memoryview(data)[_CDR_HEADER_LEN:], 0, msgdef.cls, ts)
-    return message
+    return codec(type_name).deserialize(data)
 
 
 def type_hash(type_name: str) -> str:
