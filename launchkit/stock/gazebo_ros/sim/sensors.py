@@ -303,9 +303,9 @@ def _pack(rgba: Any, count: int, encoding: str) -> bytes:
     pixels = np.asarray(rgba, dtype=np.uint8).reshape(count, 4)
     if encoding == "mono8":
         grey = (pixels[:, :3].astype(np.uint16).sum(axis=1) // 3).astype(np.uint8)
-        return grey.tobytes()
+        return bytes(grey.tobytes())  # bytes() of bytes: the same object
     order = (2, 1, 0) if encoding == "bgr8" else (0, 1, 2)
     packed = np.empty((count, 3), dtype=np.uint8)
     for column, channel in enumerate(order):
         packed[:, column] = pixels[:, channel]
-    return packed.tobytes()
+    return bytes(packed.tobytes())
