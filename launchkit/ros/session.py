@@ -116,6 +116,10 @@ def router_config(endpoint: str, options: RouterOptions | None = None) -> zenoh.
         config = _base_config("router")
         config.insert_json5("listen/endpoints", json.dumps([endpoint]))
         config.insert_json5("connect/endpoints", "[]")
+        # a router's open() otherwise spends scouting/delay (500 ms) waiting for scouted peers,
+        # even with multicast scouting off: the launch's first node waited for it. Links to
+        # other routers (--connect) are made in the background either way.
+        config.insert_json5("scouting/delay", "0")
     if options is not None and not options.empty:
         _apply_options(config, endpoint, options, from_file)
     return apply_overrides(config)
