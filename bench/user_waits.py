@@ -97,9 +97,7 @@ def startup_rows(runs: int) -> None:
         empty = Path(tmp) / "empty.launch.xml"
         empty.write_text("<launch/>\n")
         hundred = Path(tmp) / "n100.launch.xml"
-        hundred.write_text(
-            "<launch>\n" + '<executable cmd="echo hi"/>\n' * 100 + "</launch>\n"
-        )
+        hundred.write_text("<launch>\n" + '<executable cmd="echo hi"/>\n' * 100 + "</launch>\n")
         m = interleaved(
             {
                 "pass": lambda: wall([PY, "-c", "pass"], env),
