@@ -8,7 +8,7 @@ from typing import Any
 from launchkit.errors import UserError
 from launchkit.ros.msgs._codec import codec
 from launchkit.ros.msgs._srv_defs import SERVICES
-from launchkit.ros.msgs._typestore import needs_services, typestore
+from launchkit.ros.msgs._typestore import typestore, typestore_for
 
 
 class MessageTypeError(UserError):
@@ -62,7 +62,7 @@ def get_message(name: str) -> Any:
     """The message class for ``pkg/msg/Name`` (or ``pkg/Name``)."""
     full = normalize_type_name(name, "msg")
     try:
-        return typestore(services=needs_services(full)).types[full]
+        return typestore_for(full).types[full]
     except KeyError:
         raise MessageTypeError(
             f"unknown message type {name!r} (expected a ROS 2 Jazzy type such as "
@@ -72,7 +72,7 @@ def get_message(name: str) -> Any:
 
 @functools.cache
 def _service(full: str) -> type[ServiceType]:
-    ts = typestore()
+    ts = typestore_for(full)
     short = full.rsplit("/", 1)[-1]
     return type(
         short,
@@ -90,7 +90,7 @@ def _service(full: str) -> type[ServiceType]:
 def get_service(name: str) -> type[ServiceType]:
     """The service type (with ``.Request``/``.Response``) for ``pkg/srv/Name``."""
     full = normalize_type_name(name, "srv")
-    if full + "_Request" not in typestore().types:
+    if full + "_Request" not in typestore_for(full).types:
         raise MessageTypeError(
             f"unknown service type {name!r} (expected one of: {', '.join(type_names('srv'))})"
         )
@@ -122,11 +122,11 @@ def type_hash(type_name: str) -> str:
 
 @functools.cache
 def _hash(type_name: str) -> str:
-    return str(typestore(services=needs_services(type_name)).hash_rihs01(type_name))
+    return str(typestore_for(type_name).hash_rihs01(type_name))
 
 
 def message_definition(type_name: str) -> str:
     """The ``.msg`` text of a type with its dependencies (as MCAP/Foxglove ``ros2msg`` want)."""
-    ts = typestore(services=needs_services(type_name))
+    ts = typestore_for(type_name)
     text, _ = ts.generate_msgdef(type_name, ros_version=2)
     return str(text)

@@ -17,7 +17,7 @@ from typing import Any
 
 from rosbags.serde import SerdeError
 
-from launchkit.ros.msgs._typestore import needs_services, typestore
+from launchkit.ros.msgs._typestore import typestore_for
 
 HEADER_LEN = 4  # CDR encapsulation: 0x00, 0x01 (little endian) or 0x00 (big), two option bytes
 _LITTLE = sys.byteorder == "little"  # rosbags' choice, and rmw's: the host's byte order
@@ -28,7 +28,7 @@ class Codec:
 
     def __init__(self, type_name: str) -> None:
         self.type_name = type_name
-        self._store = typestore(services=needs_services(type_name))
+        self._store = typestore_for(type_name)
         msgdef = self._store.get_msgdef(type_name)
         self._cls = msgdef.cls
         self._size = msgdef.getsize_cdr
