@@ -66,7 +66,8 @@ class BringUp:
             stderr=subprocess.DEVNULL,
             start_new_session=True,
         )
-        self.context = ros.Context(router=self.router)
+        # start_router=False: the launch hosts the router; the probe must not start one first
+        self.context = ros.Context(router=self.router, start_router=False)
         self.context.init([], 0)
         self.node = ros.Node("bench_probe", context=self.context, enable_rosout=False)
 

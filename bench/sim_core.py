@@ -7,6 +7,11 @@ Cases: physics + diff drive (in-process, every step) + joint/base reads; + the l
 the EGL renderer plugin. The simulator server no longer renders (the camera has its own process,
 measured end to end by bench/bringup.py); the camera cases show what one process doing both costs.
 Target (issue 5): >= 20x with the lidar. Prints one line per case and the machine and date.
+
+``--frames N`` instead times what one camera frame costs, step by step (median of N frames, ms,
+TinyRenderer then EGL): mirroring the state (base pose and joints), the view matrix, PyBullet's
+render, packing RGBA into rgb8 (and the way it was packed before, for comparison), building the
+Image, serializing it and Zenoh's put (no remote subscriber).
 """
 
 from __future__ import annotations
@@ -15,6 +20,8 @@ import argparse
 import os
 import platform
 import time
+from collections.abc import Iterator
+from contextlib import contextmanager
 from datetime import datetime, timezone
 from pathlib import Path
 
@@ -58,13 +65,87 @@ def run(seconds: float, lidar: bool, camera: bool, egl: bool = False) -> float:
         sim.close()
 
 
+def frame_costs(frames: int, egl: bool) -> dict[str, float]:
+    """Median milliseconds of each step of a camera frame (see the module's docstring)."""
+    import statistics
+
+    import numpy as np
+    import zenoh
+
+    from launchkit.ros.msgs._codec import codec
+    from launchkit.stock.gazebo_ros import messages
+    from launchkit.stock.gazebo_ros.sim.sensors import _pack
+    from launchkit.stock.rotations import rotate
+
+    sim = Simulation(load_world(resolve_world("obstacles")), egl=egl)
+    session = zenoh.open(zenoh.Config())
+    try:
+        entity = sim.spawn("robot", SEED.read_text(), (0, 0, 0.151, 0, 0, 0))
+        camera = Camera(sim, entity, load_plugins(sim, entity, lambda _m: None).cameras[0][1])
+        c, p = camera.config, sim.p
+        publisher = session.declare_publisher("bench/camera")
+        coder = codec("sensor_msgs/msg/Image")
+        renderer = p.ER_BULLET_HARDWARE_OPENGL if egl else p.ER_TINY_RENDERER
+        steps: dict[str, list[float]] = {}
+
+        @contextmanager
+        def timed(step: str) -> Iterator[None]:
+            start = time.perf_counter()
+            yield
+            steps.setdefault(step, []).append((time.perf_counter() - start) * 1000)
+
+        for i in range(frames):
+            joints = {j: 0.1 * i for j in entity.joints}
+            with timed("mirror state"):
+                sim.set_state(entity, (0.01 * i, 0.0, 0.151), (0.0, 0.0, 0.0, 1.0), joints)
+            with timed("view matrix"):
+                position, orientation = sim.link_pose(entity, c.link)
+                ahead = rotate(orientation, (1.0, 0.0, 0.0))
+                target = tuple(a + b for a, b in zip(position, ahead, strict=False))
+                up = rotate(orientation, (0.0, 0.0, 1.0))
+                matrix = p.computeViewMatrix(position, target, up)
+            with timed("render (getCameraImage)"):
+                rgba = p.getCameraImage(
+                    c.width,
+                    c.height,
+                    matrix,
+                    camera._projection,
+                    renderer=renderer,
+                    flags=p.ER_NO_SEGMENTATION_MASK,
+                    physicsClientId=sim.client,
+                )[2]
+            with timed("pack rgb8"):
+                frame = _pack(rgba, c.width * c.height, c.encoding)
+            with timed("  before: (N,3) view .tobytes()"):
+                np.asarray(rgba, dtype=np.uint8).reshape(-1, 4)[:, :3].tobytes()
+            with timed("build Image"):
+                msg = messages.image(c, 1.0, frame)
+            with timed("serialize"):
+                data = coder.serialize(msg)
+            with timed("put"):
+                publisher.put(data)
+        return {step: statistics.median(values) for step, values in steps.items()}
+    finally:
+        session.close()  # type: ignore[no-untyped-call]
+        sim.close()
+
+
 def main() -> None:
     """Run every case and print the results."""
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--seconds", type=float, default=20.0, help="sim seconds without camera")
     parser.add_argument("--camera-seconds", type=float, default=3.0, help="sim seconds with it")
+    parser.add_argument("--frames", type=int, default=0, help="time each step of N frames")
     args = parser.parse_args()
     silence_c_stdout()  # the EGL plugin prints a line per frame
+    if args.frames:
+        for egl in (False, True):
+            costs = frame_costs(args.frames, egl)
+            for step, ms in costs.items():
+                print(f"{'EGL' if egl else 'TinyRenderer':12s} {step:34s} {ms:8.2f} ms")
+            total = sum(v for k, v in costs.items() if not k.startswith(" "))
+            print(f"{'EGL' if egl else 'TinyRenderer':12s} {'total':34s} {total:8.2f} ms")
+        return
     cases = [
         ("physics + diff drive", args.seconds, False, False, False),
         ("+ lidar 360 rays 12 Hz", args.seconds, True, False, False),

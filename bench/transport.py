@@ -9,6 +9,13 @@ for launchkit.ros and raw zenoh in turn, measures
 Latency is the receiver's CLOCK_MONOTONIC minus the sender's (one clock, shared by processes).
 The last line is ``transport: p50 ratio R (launchkit/raw zenoh), throughput N msg/s,
 first message T ms`` (R for 100 B; N and T for launchkit.ros; T from init).
+
+``python bench/transport.py --steps`` instead times each step of the per-message path in one
+process (median of many calls, microseconds): building the message, serializing it, the
+attachment, Zenoh's put, the receiver's copy out of Zenoh, decoding, and the subscription's
+queue-and-dispatch to the callback; for a 100 B byte array, a 100 KB one and an 800x800 rgb8
+Image. Serialize and decode are also timed the way launchkit did them before its per-type
+codec (rosbags' Typestore.serialize_cdr + bytes(), deserialize_cdr on bytes), for comparison.
 """
 
 from __future__ import annotations
@@ -251,6 +258,107 @@ def first_message(kind: str, runs: int) -> tuple[list[float], list[float]]:
     return from_start, from_open
 
 
+def _per_call_us(action: Any, budget: float = 0.3) -> float:
+    """Median microseconds of ``action()`` over batches filling about ``budget`` seconds."""
+    action()
+    start = time.perf_counter()
+    action()
+    once = max(time.perf_counter() - start, 1e-7)
+    batch = max(1, int(0.01 / once))
+    samples = []
+    deadline = time.perf_counter() + budget
+    while time.perf_counter() < deadline or len(samples) < 5:
+        start = time.perf_counter()
+        for _ in range(batch):
+            action()
+        samples.append((time.perf_counter() - start) / batch)
+    return statistics.median(samples) * 1e6
+
+
+class _Sample:
+    """What a subscription reads of a Zenoh sample: payload and attachment (as ZBytes)."""
+
+    def __init__(self, payload: Any, attachment: Any) -> None:
+        self.payload, self.attachment = payload, attachment
+
+
+def _case_steps(ros: Any, node: Any, msg_type: Any, build: Any) -> dict[str, float]:
+    """Each step's microseconds for messages made by ``build()``."""
+    import zenoh
+
+    from launchkit.ros.keyexpr import decode_attachment, encode_attachment
+    from launchkit.ros.msgs._codec import codec
+    from launchkit.ros.msgs._typestore import typestore
+
+    store = typestore()
+    name = msg_type.__msgtype__
+    msg = build()
+    coder = codec(name)
+    data = coder.serialize(msg)
+    payload = bytes(data)
+    gid = bytes(16)
+    attachment = encode_attachment(1, time.time_ns(), gid)
+    publisher = node.context.session.declare_publisher(f"bench/steps/{len(data)}")
+    sub = node.create_subscription(msg_type, f"bench/steps_{len(data)}", lambda _m: None, 10)
+    sample = _Sample(zenoh.ZBytes(payload), zenoh.ZBytes(attachment))
+
+    def dispatch() -> None:
+        sub._on_sample(sample)
+        ros.spin_once(node, timeout_sec=0)
+
+    rows = {
+        "build message": _per_call_us(build),
+        "serialize": _per_call_us(lambda: coder.serialize(msg)),
+        "  before: Typestore.serialize_cdr + bytes()": _per_call_us(
+            lambda: bytes(store.serialize_cdr(msg, name))
+        ),
+        "attachment": _per_call_us(lambda: encode_attachment(2, time.time_ns(), gid)),
+        "put (no remote subscriber)": _per_call_us(
+            lambda: publisher.put(data, attachment=attachment)
+        ),
+        "receive: copy out of Zenoh": _per_call_us(lambda: sample.payload.to_bytes()),
+        "decode": _per_call_us(lambda: coder.deserialize(payload)),
+        "  before: Typestore.deserialize_cdr": _per_call_us(
+            lambda: store.deserialize_cdr(payload, name)
+        ),
+        "decode attachment (2-argument callbacks)": _per_call_us(
+            lambda: decode_attachment(attachment)
+        ),
+        "queue + dispatch + decode + callback": _per_call_us(dispatch),
+    }
+    publisher.undeclare()
+    node.destroy_subscription(sub)
+    return rows
+
+
+def steps() -> None:
+    """Print the cost of each step of the per-message path (see the module's docstring)."""
+    import numpy as np
+
+    import launchkit.ros as ros
+    from launchkit.ros.msgs import get_message
+
+    ros.init([])
+    node = ros.Node(f"bench_steps_{os.getpid()}")
+    array_type = get_message("std_msgs/msg/UInt8MultiArray")
+    image_type = get_message("sensor_msgs/msg/Image")
+    pixels = np.zeros(800 * 800 * 3, dtype=np.uint8)
+    cases = [
+        ("100 B UInt8MultiArray", array_type, lambda: array_type(data=bytes(100))),
+        ("100 KB UInt8MultiArray", array_type, lambda: array_type(data=bytes(100_000))),
+        (
+            "800x800 rgb8 Image",
+            image_type,
+            lambda: image_type(height=800, width=800, encoding="rgb8", step=2400, data=pixels),
+        ),
+    ]
+    print(f"# per-message steps, {datetime.now(timezone.utc):%Y-%m-%d %H:%M} UTC, microseconds")
+    for label, msg_type, build in cases:
+        for step, value in _case_steps(ros, node, msg_type, build).items():
+            print(f"{label:24s} {step:44s} {value:10.1f}")
+    ros.shutdown()
+
+
 def main() -> int:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--role", choices=["pub", "sub"])
@@ -262,6 +370,7 @@ def main() -> int:
     parser.add_argument("--expect", type=int, default=0)
     parser.add_argument("--first", action="store_true")
     parser.add_argument("--quick", action="store_true", help="fewer messages (a smoke run)")
+    parser.add_argument("--steps", action="store_true", help="time each per-message step")
     args = parser.parse_args()
     if args.role == "pub":
         role_pub(args.kind, args.size, args.rate, args.count, args.seconds)
@@ -272,6 +381,10 @@ def main() -> int:
 
     from launchkit.ros.router import start_router
 
+    if args.steps:
+        os.environ.setdefault("LAUNCHKIT_ROUTER", "tcp/127.0.0.1:7447")
+        steps()
+        return 0
     with socket.socket() as sock:
         sock.bind(("127.0.0.1", 0))
         port = sock.getsockname()[1]

@@ -1,7 +1,7 @@
 """Ending a launchkit process promptly once its work is done (or Ctrl-C ended it).
 
 A node or CLI process that has imported the ROS layer (zenoh, the message types, numpy; the
-stock nodes also scipy and trimesh) spends 0.3 to 2.5 s of a busy machine's time in the
+stock nodes also PyBullet) spends 0.3 to 2.5 s of a busy machine's time in the
 interpreter's own teardown of thousands of modules and objects after ``main`` returns: long
 enough for a supervisor or a test to give up on it after SIGINT. Nothing in that teardown is
 needed: the sockets close with the process, and the cleanup that matters is done here first.

@@ -10,14 +10,23 @@ only XML or YAML). Each file is read once per loader and syntax.
 
 from __future__ import annotations
 
+from functools import cached_property
 from pathlib import Path
+from typing import TYPE_CHECKING
 
 from launchkit.description.launch_description import LaunchDescription
 from launchkit.errors import LaunchFileError, Location
 from launchkit.frontend.action_parser import ActionParser
 from launchkit.frontend.tags import standard_parser
-from launchkit.frontend.xml.parser import XML_SUFFIXES, XmlParser
-from launchkit.frontend.yaml.parser import YAML_SUFFIXES, YamlParser
+
+if TYPE_CHECKING:
+    from launchkit.frontend.xml.parser import XmlParser
+    from launchkit.frontend.yaml.parser import YamlParser
+
+# the suffixes live here, not in the parsers' modules, so that choosing a
+# frontend imports neither lxml nor PyYAML: a launch imports only the one its files need
+XML_SUFFIXES = (".xml", ".launch")
+YAML_SUFFIXES = (".yaml", ".yml")
 
 #: The syntaxes an include may ask for: None (by suffix), "python", "frontend" (XML or YAML).
 SYNTAXES = (None, "python", "frontend")
@@ -28,9 +37,21 @@ class LaunchLoader:
 
     def __init__(self, actions: ActionParser | None = None) -> None:
         self.actions = actions or standard_parser()
-        self.xml = XmlParser(self.actions)
-        self.yaml = YamlParser(self.actions)
         self._cache: dict[tuple[Path, str | None], LaunchDescription] = {}
+
+    @cached_property
+    def xml(self) -> XmlParser:
+        """The XML frontend (lxml is imported on first use)."""
+        from launchkit.frontend.xml.parser import XmlParser
+
+        return XmlParser(self.actions)
+
+    @cached_property
+    def yaml(self) -> YamlParser:
+        """The YAML frontend (PyYAML is imported on first use)."""
+        from launchkit.frontend.yaml.parser import YamlParser
+
+        return YamlParser(self.actions)
 
     def load(
         self, path: Path, included_from: Location | None = None, syntax: str | None = None

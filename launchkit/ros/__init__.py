@@ -18,40 +18,96 @@ Nodes connect to the Zenoh router at ``$LAUNCHKIT_ROUTER`` (default tcp/127.0.0.
 
 from __future__ import annotations
 
-from launchkit.ros.clock import Clock, ClockType, Duration, ROSClock, Time
-from launchkit.ros.context import Context, NotInitializedError, default_context
-from launchkit.ros.context import install_signal_handlers as _install_signal_handlers
-from launchkit.ros.executor import (
-    Executor,
-    ExternalShutdownException,
-    MultiThreadedExecutor,
-    SingleThreadedExecutor,
-    spin,
-    spin_once,
-    spin_until_future_complete,
-)
-from launchkit.ros.logging import LoggingSeverity, get_logger
-from launchkit.ros.node import Node
-from launchkit.ros.node_params import (
-    InvalidParameterTypeException,
-    ParameterAlreadyDeclaredException,
-    ParameterNotDeclaredException,
-    SetParametersResult,
-)
-from launchkit.ros.params import Parameter, ParameterType
-from launchkit.ros.qos import (
-    DurabilityPolicy,
-    HistoryPolicy,
-    QoSProfile,
-    ReliabilityPolicy,
-    qos_profile_sensor_data,
-    qos_profile_system_default,
-)
-from launchkit.ros.task import Future
+import importlib
+from typing import TYPE_CHECKING, Any
 
-QoSDurabilityPolicy = DurabilityPolicy
-QoSReliabilityPolicy = ReliabilityPolicy
-QoSHistoryPolicy = HistoryPolicy
+if TYPE_CHECKING:
+    from launchkit.ros.clock import Clock, ClockType, Duration, ROSClock, Time
+    from launchkit.ros.context import Context, NotInitializedError
+    from launchkit.ros.context import default_context as default_context
+    from launchkit.ros.executor import (
+        Executor,
+        ExternalShutdownException,
+        MultiThreadedExecutor,
+        SingleThreadedExecutor,
+        spin,
+        spin_once,
+        spin_until_future_complete,
+    )
+    from launchkit.ros.logging import LoggingSeverity, get_logger
+    from launchkit.ros.node import Node
+    from launchkit.ros.node_params import (
+        InvalidParameterTypeException,
+        ParameterAlreadyDeclaredException,
+        ParameterNotDeclaredException,
+        SetParametersResult,
+    )
+    from launchkit.ros.params import Parameter, ParameterType
+    from launchkit.ros.qos import (
+        DurabilityPolicy,
+        HistoryPolicy,
+        QoSProfile,
+        ReliabilityPolicy,
+        qos_profile_sensor_data,
+        qos_profile_system_default,
+    )
+    from launchkit.ros.task import Future
+
+# Names are imported on first use (PEP 562): importing one submodule, e.g. launchkit.ros.keyexpr
+# for the command-line tools, must not load the message types, numpy and the whole node API.
+_LAZY = {
+    "Clock": "launchkit.ros.clock",
+    "ClockType": "launchkit.ros.clock",
+    "Duration": "launchkit.ros.clock",
+    "ROSClock": "launchkit.ros.clock",
+    "Time": "launchkit.ros.clock",
+    "Context": "launchkit.ros.context",
+    "NotInitializedError": "launchkit.ros.context",
+    "default_context": "launchkit.ros.context",
+    "Executor": "launchkit.ros.executor",
+    "ExternalShutdownException": "launchkit.ros.executor",
+    "MultiThreadedExecutor": "launchkit.ros.executor",
+    "SingleThreadedExecutor": "launchkit.ros.executor",
+    "spin": "launchkit.ros.executor",
+    "spin_once": "launchkit.ros.executor",
+    "spin_until_future_complete": "launchkit.ros.executor",
+    "LoggingSeverity": "launchkit.ros.logging",
+    "get_logger": "launchkit.ros.logging",
+    "Node": "launchkit.ros.node",
+    "InvalidParameterTypeException": "launchkit.ros.node_params",
+    "ParameterAlreadyDeclaredException": "launchkit.ros.node_params",
+    "ParameterNotDeclaredException": "launchkit.ros.node_params",
+    "SetParametersResult": "launchkit.ros.node_params",
+    "Parameter": "launchkit.ros.params",
+    "ParameterType": "launchkit.ros.params",
+    "DurabilityPolicy": "launchkit.ros.qos",
+    "HistoryPolicy": "launchkit.ros.qos",
+    "QoSProfile": "launchkit.ros.qos",
+    "ReliabilityPolicy": "launchkit.ros.qos",
+    "qos_profile_sensor_data": "launchkit.ros.qos",
+    "qos_profile_system_default": "launchkit.ros.qos",
+    "Future": "launchkit.ros.task",
+    "QoSDurabilityPolicy": "launchkit.ros.qos:DurabilityPolicy",
+    "QoSReliabilityPolicy": "launchkit.ros.qos:ReliabilityPolicy",
+    "QoSHistoryPolicy": "launchkit.ros.qos:HistoryPolicy",
+}
+
+
+def __getattr__(name: str) -> Any:
+    """The public names of the node API, imported when first asked for."""
+    target = _LAZY.get(name)
+    if target is None:
+        raise AttributeError(f"module 'launchkit.ros' has no attribute '{name}'")
+    module_name, _, attribute = target.partition(":")
+    value = getattr(importlib.import_module(module_name), attribute or name)
+    globals()[name] = value
+    return value
+
+
+if TYPE_CHECKING:
+    QoSDurabilityPolicy = DurabilityPolicy
+    QoSReliabilityPolicy = ReliabilityPolicy
+    QoSHistoryPolicy = HistoryPolicy
 
 
 def init(
@@ -62,18 +118,24 @@ def init(
     Installs SIGINT/SIGTERM handlers (main thread only) that shut down the default context,
     which makes ``spin`` return so that the node exits promptly.
     """
+    from launchkit.ros.context import default_context, install_signal_handlers
+
     (context or default_context).init(args, domain_id)
     if context is None or context is default_context:
-        _install_signal_handlers()
+        install_signal_handlers()
 
 
 def ok(*, context: Context | None = None) -> bool:
     """True between ``init()`` and ``shutdown()`` (a SIGINT shuts down)."""
+    from launchkit.ros.context import default_context
+
     return (context or default_context).ok()
 
 
 def shutdown(*, context: Context | None = None) -> None:
     """Destroy every entity and close the Zenoh session (safe to call twice)."""
+    from launchkit.ros.context import default_context
+
     (context or default_context).shutdown()
 
 
@@ -82,6 +144,8 @@ try_shutdown = shutdown
 
 def create_node(node_name: str, **kwargs: object) -> Node:
     """rclpy's ``create_node``: same as ``Node(node_name, ...)``."""
+    from launchkit.ros.node import Node
+
     return Node(node_name, **kwargs)  # type: ignore[arg-type]
 
 

@@ -17,6 +17,7 @@ from launchkit.ros.keyexpr import domain_id
 from launchkit.ros.logging import get_logger
 from launchkit.ros.session import (
     SESSION_CONFIG_ENV,
+    client_config,
     close_all,
     close_session,
     open_session,
@@ -51,10 +52,15 @@ class NotInitializedError(RuntimeError):
 class Context:
     """One ROS context: its arguments, domain, Zenoh session and graph (both opened lazily)."""
 
-    def __init__(self, router: str | None = None, *, start_router: bool | None = None) -> None:
+    def __init__(
+        self, router: str | None = None, *, start_router: bool | None = None, client: bool = False
+    ) -> None:
         self.router = router  # None: $LAUNCHKIT_ROUTER, else the default endpoint
         # None: $LAUNCHKIT_ROUTER_AUTOSTART decides whether a missing router is started
         self.start_router = start_router
+        # a command-line tool's context: its session is a client of the router (see
+        # session.client_config), connected when opened
+        self.client = client
         self._lock = threading.RLock()
         self._initialized = False
         self._interrupted = False
@@ -108,7 +114,8 @@ class Context:
                 endpoint = router_endpoint(self.router)
                 if not os.environ.get(SESSION_CONFIG_ENV):  # else the file names the router
                     ensure_router(endpoint, autostart=self.start_router, say=_say)
-                self._session = open_session(peer_config(self.router))
+                config = client_config(self.router) if self.client else peer_config(self.router)
+                self._session = open_session(config)
                 if not wait_for_router(self._session, ROUTER_WAIT):
                     get_logger("launchkit.ros").warn(
                         f"Unable to connect to a ROS router at {endpoint}: this node keeps "

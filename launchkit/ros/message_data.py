@@ -10,7 +10,7 @@ import yaml
 
 from launchkit.errors import UserError
 from launchkit.ros.msgs import message_type_name
-from launchkit.ros.msgs._typestore import typestore
+from launchkit.ros.msgs._typestore import typestore_for
 
 _BASE, _NAME, _ARRAY, _SEQUENCE = 1, 2, 3, 4
 _INTS = {"byte", "char", "int8", "uint8", "int16", "uint16", "int32", "uint32", "int64", "uint64"}
@@ -23,12 +23,12 @@ class MessageValueError(UserError):
 
 def fields_of(type_name: str) -> list[tuple[str, Any]]:
     """(field name, rosbags field description) of a message type, in order."""
-    return list(typestore().fielddefs[type_name][1])
+    return list(typestore_for(type_name).fielddefs[type_name][1])
 
 
 def constants_of(type_name: str) -> list[tuple[str, str, Any]]:
     """(name, base type, value) of a message type's constants."""
-    return list(typestore().fielddefs[type_name][0])
+    return list(typestore_for(type_name).fielddefs[type_name][0])
 
 
 def to_data(msg: Any, truncate: int | None = TRUNCATE_LENGTH) -> dict[str, Any]:
@@ -78,7 +78,7 @@ def from_yaml(type_name: str, text: str) -> Any:
 
 def build(type_name: str, data: Any, path: str) -> Any:
     """A message of ``type_name`` with the fields in the mapping ``data`` set (checked)."""
-    cls = typestore().types[type_name]
+    cls = typestore_for(type_name).types[type_name]
     if not isinstance(data, dict):
         raise MessageValueError(
             f"{path}: got {data!r}, expected a mapping of {type_name} fields "

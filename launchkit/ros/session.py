@@ -78,6 +78,30 @@ def peer_config(endpoint: str | None = None) -> zenoh.Config:
     return apply_overrides(config)
 
 
+CLIENT_CONNECT_TIMEOUT_MS = 10_000  # a command-line tool's open() fails after this long
+
+
+def client_config(endpoint: str | None = None) -> zenoh.Config:
+    """A command-line tool's configuration: a client of the router, whose ``open()`` returns
+    only once connected (or fails).
+
+    A client's queries are answered by the router from everything it knows, so one liveliness
+    query lists the whole graph. A peer's first query may leave before its routes are set up
+    and come back empty or partial (measured: about 1 in 3 right after ``open()``), which made
+    the tools ask again until two answers agreed. ``$ZENOH_SESSION_CONFIG_URI`` and
+    ``$ZENOH_CONFIG_OVERRIDE`` apply as for a node, the mode then being client.
+    """
+    config = _config_file(SESSION_CONFIG_ENV)
+    if config is None:
+        config = _base_config("client")
+        config.insert_json5("connect/endpoints", json.dumps([router_endpoint(endpoint)]))
+    else:
+        config.insert_json5("mode", '"client"')
+    config.insert_json5("connect/exit_on_failure", "true")
+    config.insert_json5("connect/timeout_ms", str(CLIENT_CONNECT_TIMEOUT_MS))
+    return apply_overrides(config)
+
+
 def router_config(endpoint: str, options: RouterOptions | None = None) -> zenoh.Config:
     """The router's configuration: listen on ``endpoint`` only, no multicast scouting; with
     ``options``, also the endpoints, TLS and access control that reach other hosts.
@@ -92,6 +116,10 @@ def router_config(endpoint: str, options: RouterOptions | None = None) -> zenoh.
         config = _base_config("router")
         config.insert_json5("listen/endpoints", json.dumps([endpoint]))
         config.insert_json5("connect/endpoints", "[]")
+        # a router's open() otherwise spends scouting/delay (500 ms) waiting for scouted peers,
+        # even with multicast scouting off: the launch's first node waited for it. Links to
+        # other routers (--connect) are made in the background either way.
+        config.insert_json5("scouting/delay", "0")
     if options is not None and not options.empty:
         _apply_options(config, endpoint, options, from_file)
     return apply_overrides(config)

@@ -13,8 +13,8 @@ import zenoh
 from zenoh import ext
 
 from launchkit.ros.keyexpr import decode_attachment, encode_attachment, entity_token, gid_of
-from launchkit.ros.msgs import message_type_name, serialize, type_hash
-from launchkit.ros.msgs._api import deserialize
+from launchkit.ros.msgs import message_type_name, type_hash
+from launchkit.ros.msgs._codec import codec
 from launchkit.ros.qos import DurabilityPolicy, HistoryPolicy, QoSProfile, ReliabilityPolicy
 
 if TYPE_CHECKING:
@@ -84,6 +84,7 @@ class _Entity:
             qos,
         )
         self.gid = gid_of(self.token_key)
+        self._codec = codec(self.type_name)
         self._token: Any = None
 
     def _announce(self) -> None:
@@ -152,16 +153,18 @@ class Publisher(_Entity):
 
     def publish(self, msg: Any) -> None:
         """Serialize ``msg`` (CDR) and send it with rmw_zenoh's attachment."""
-        if getattr(msg, "__msgtype__", None) != self.type_name:
-            if isinstance(msg, (bytes, bytearray, memoryview)):
-                data = bytes(msg)
-            else:
-                raise TypeError(
-                    f"publisher on '{self.topic_name}' expects {self.type_name}, "
-                    f"got {type(msg).__name__}"
-                )
+        data: bytes | bytearray
+        if getattr(msg, "__msgtype__", None) == self.type_name:
+            data = self._codec.serialize(msg)  # a bytearray: Zenoh copies it once, as bytes
+        elif isinstance(msg, (bytes, bytearray)):
+            data = msg
+        elif isinstance(msg, memoryview):
+            data = bytes(msg)  # Zenoh takes bytes or bytearray only
         else:
-            data = serialize(msg, self.type_name)
+            raise TypeError(
+                f"publisher on '{self.topic_name}' expects {self.type_name}, "
+                f"got {type(msg).__name__}"
+            )
         with self._lock:
             self._sequence += 1
             attachment = encode_attachment(self._sequence, time.time_ns(), self.gid)
@@ -285,7 +288,7 @@ class Subscription(_Entity):
         message: Any = payload
         if not self.raw:
             try:
-                message = deserialize(payload, self.type_name)
+                message = self._codec.deserialize(payload)
             except Exception as exc:
                 self.node.get_logger().error(
                     f"dropped a message on '{self.topic_name}' that is not a valid "

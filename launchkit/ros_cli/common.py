@@ -4,19 +4,22 @@ from __future__ import annotations
 
 import argparse
 import os
-import time
 from collections.abc import Iterator
 from contextlib import contextmanager
+from typing import TYPE_CHECKING
 
 from launchkit.envvars import ROUTER
-from launchkit.errors import UserError
-from launchkit.ros.context import Context
+from launchkit.errors import RuntimeLaunchError, UserError
 from launchkit.ros.endpoints import router_endpoint
-from launchkit.ros.graph import snapshot
-from launchkit.ros.keyexpr import Token
+from launchkit.ros.keyexpr import Token, domain_id
 from launchkit.ros.logging import get_logger
-from launchkit.ros.node import Node
 from launchkit.ros.shared_router import ensure_router
+
+if TYPE_CHECKING:
+    from launchkit.ros.node import Node
+
+# The listing commands (topic list, node info, ...) import only zenoh and the token parser: the
+# node API, the message types and numpy are imported by the commands that make a node.
 
 
 class CliUsageError(UserError):
@@ -50,39 +53,61 @@ def _say(level: str, message: str) -> None:
 @contextmanager
 def cli_node(args: argparse.Namespace) -> Iterator[Node]:
     """A hidden node for one command, its context shut down afterwards."""
+    from launchkit.ros.context import Context
+    from launchkit.ros.node import Node
+
     use_router(args)
-    context = Context(start_router=False)  # use_router decided already
+    context = Context(start_router=False, client=True)  # use_router decided already
     context.init([])
     try:
-        yield Node(f"_launchkit_cli_{os.getpid()}", context=context, start_parameter_services=False)
+        with _connecting(context.router):
+            node = Node(
+                f"_launchkit_cli_{os.getpid()}", context=context, start_parameter_services=False
+            )
+        yield node
     finally:
         context.shutdown()
 
 
-_SETTLE = 0.5  # seconds a fresh session may need before the router routes liveliness queries
-
-
 def graph_tokens(node: Node, timeout: float = 2.0) -> list[Token]:
-    """Every token in the node's domain, without the command's own.
+    """Every token in the node's domain, without the command's own: one query, answered by
+    the router from what it knows (the node's session is its client, see
+    :func:`launchkit.ros.session.client_config`)."""
+    from launchkit.ros.graph import snapshot
 
-    Just after a session connects, the router may not route liveliness queries yet (measured:
-    up to ~60 ms) and answers nothing or part of the graph; so ask until two answers in a row
-    agree (and are not empty), for at most ``_SETTLE`` seconds.
-    """
     own = node.zid
-    deadline = time.monotonic() + _SETTLE
-    previous: set[str] | None = None
-    while True:
-        tokens = [
-            t
-            for t in snapshot(node.context.session, node.context.domain_id, timeout)
-            if t.zid != own
-        ]
-        keys = {t.key for t in tokens}
-        if (keys and keys == previous) or time.monotonic() > deadline:
-            return tokens
-        previous = keys
-        time.sleep(0.02)
+    return [
+        t for t in snapshot(node.context.session, node.context.domain_id, timeout) if t.zid != own
+    ]
+
+
+def graph_once(args: argparse.Namespace, timeout: float = 2.0) -> list[Token]:
+    """Every token of the graph, asked once of the router by a short-lived client session
+    (no node: what the listing commands need). Like ``ros2 ... list`` without its daemon, it
+    shows what the router knows at that moment: an entity declared while the query is under
+    way may be missing."""
+    from launchkit.ros.graph import snapshot
+    from launchkit.ros.session import client_config, close_session, open_session
+
+    endpoint = use_router(args)
+    with _connecting(endpoint):
+        session = open_session(client_config(endpoint))
+    try:
+        return snapshot(session, domain_id(), timeout)
+    finally:
+        close_session(session)
+
+
+@contextmanager
+def _connecting(endpoint: str | None) -> Iterator[None]:
+    """Turn Zenoh's failure to connect into a one-line error (the router went away)."""
+    import zenoh
+
+    try:
+        yield
+    except zenoh.ZError as error:
+        shown = endpoint or router_endpoint(None)
+        raise RuntimeLaunchError(f"cannot connect to the ROS router at {shown}: {error}") from None
 
 
 def normalize_topic(name: str) -> str:

@@ -3,35 +3,31 @@
 from __future__ import annotations
 
 import argparse
+import importlib
 import signal
 from types import FrameType
 
 from launchkit._argparse import CommandParser
-from launchkit.ros_cli import (
-    interface_commands,
-    node_commands,
-    param_commands,
-    router_commands,
-    service_commands,
-    topic_commands,
-)
 
+# each family's module, imported only when its command runs (interface and param load the
+# message types, router the router's code: a `topic list` needs none of them)
 _FAMILIES = {
-    "topic": topic_commands,
-    "node": node_commands,
-    "service": service_commands,
-    "param": param_commands,
-    "interface": interface_commands,
-    "router": router_commands,
+    "topic": "launchkit.ros_cli.topic_commands",
+    "node": "launchkit.ros_cli.node_commands",
+    "service": "launchkit.ros_cli.service_commands",
+    "param": "launchkit.ros_cli.param_commands",
+    "interface": "launchkit.ros_cli.interface_commands",
+    "router": "launchkit.ros_cli.router_commands",
 }
 
 
-def build_parser() -> argparse.ArgumentParser:
-    """The parser of every ROS command."""
+def build_parser(command: str | None = None) -> argparse.ArgumentParser:
+    """The parser of ``command``'s family (of every ROS command when None)."""
     parser = CommandParser(prog="launchkit")
     commands = parser.add_subparsers(dest="command", metavar="COMMAND", required=True)
-    for family in _FAMILIES.values():
-        family.add_parser(commands)
+    for name, module in _FAMILIES.items():
+        if command is None or command == name:
+            importlib.import_module(module).add_parser(commands)
     return parser
 
 
@@ -44,7 +40,7 @@ def main(command: str, argv: list[str]) -> int:
 
     Long-running commands (echo, hz, pub, router) stop on Ctrl-C or SIGTERM with status 0.
     """
-    args = build_parser().parse_args([command, *argv])
+    args = build_parser(command if command in _FAMILIES else None).parse_args([command, *argv])
     previous = signal.signal(signal.SIGTERM, _terminate)
     try:
         return int(args.run(args))

@@ -8,8 +8,7 @@ from typing import Any
 from launchkit.ros_cli.common import (
     CliUsageError,
     add_router_option,
-    cli_node,
-    graph_tokens,
+    graph_once,
     visible,
 )
 
@@ -29,8 +28,7 @@ def add_parser(commands: Any) -> None:
 
 
 def _list(args: argparse.Namespace) -> int:
-    with cli_node(args) as node:
-        tokens = graph_tokens(node)
+    tokens = graph_once(args)
     names = sorted({t.node_fqn for t in tokens if t.kind == "NN" and visible(t, args.all)})
     for name in names:
         print(name)
@@ -47,8 +45,7 @@ _SECTIONS = (
 
 def _info(args: argparse.Namespace) -> int:
     wanted = args.node_name if args.node_name.startswith("/") else "/" + args.node_name
-    with cli_node(args) as node:
-        tokens = [t for t in graph_tokens(node) if t.node_fqn == wanted]
+    tokens = [t for t in graph_once(args) if t.node_fqn == wanted]
     if not any(t.kind == "NN" for t in tokens):
         raise CliUsageError(
             f"unknown node {wanted}", expected="a node listed by `launchkit node list`"

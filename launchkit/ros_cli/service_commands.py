@@ -6,14 +6,11 @@ import argparse
 from typing import Any
 
 from launchkit.errors import RuntimeLaunchError
-from launchkit.ros.message_data import from_yaml, short_repr
-from launchkit.ros.msgs import get_service
-from launchkit.ros.services import ServiceCallError
 from launchkit.ros_cli.common import (
     CliUsageError,
     add_router_option,
     cli_node,
-    graph_tokens,
+    graph_once,
     hidden_name,
     normalize_topic,
 )
@@ -42,8 +39,7 @@ def add_parser(commands: Any) -> None:
 
 
 def _services(args: argparse.Namespace, hidden: bool) -> dict[str, set[str]]:
-    with cli_node(args) as node:
-        tokens = graph_tokens(node)
+    tokens = graph_once(args)
     services: dict[str, set[str]] = {}
     for t in tokens:
         if t.kind == "SS" and (hidden or not hidden_name(t.topic)):
@@ -72,6 +68,10 @@ def _type(args: argparse.Namespace) -> int:
 
 
 def _call(args: argparse.Namespace) -> int:
+    from launchkit.ros.message_data import from_yaml, short_repr
+    from launchkit.ros.msgs import get_service
+    from launchkit.ros.services import ServiceCallError
+
     srv = get_service(args.service_type)
     request = from_yaml(srv._TYPE_NAME + "_Request", args.values)
     name = normalize_topic(args.service_name)

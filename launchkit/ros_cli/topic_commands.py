@@ -10,20 +10,20 @@ import threading
 import time
 from typing import Any
 
-from launchkit.ros.clock import Clock, ClockType
 from launchkit.ros.keyexpr import Token
-from launchkit.ros.message_data import from_yaml, to_yaml
-from launchkit.ros.msgs import get_message, normalize_type_name
 from launchkit.ros.qos import DurabilityPolicy, QoSProfile, ReliabilityPolicy
-from launchkit.ros.rate import Rate
 from launchkit.ros_cli.common import (
     CliUsageError,
     add_router_option,
     cli_node,
+    graph_once,
     graph_tokens,
     hidden_name,
     normalize_topic,
 )
+
+# list, info and type ask the router once and need no node; echo, pub and hz import the message
+# types (and numpy) when they run
 
 
 def add_parser(commands: Any) -> None:
@@ -89,23 +89,24 @@ def _topics(tokens: list[Token], hidden: bool) -> dict[str, set[str]]:
 
 
 def _list(args: argparse.Namespace) -> int:
-    with cli_node(args) as node:
-        topics = _topics(graph_tokens(node), args.include_hidden_topics)
+    topics = _topics(graph_once(args), args.include_hidden_topics)
     for name in sorted(topics):
         suffix = f" [{', '.join(sorted(topics[name]))}]" if args.show_types else ""
         print(f"{name}{suffix}")
     return 0
 
 
-def _discover_type(node: Any, topic: str, timeout: float | None) -> str:
-    """The type of ``topic`` from the graph; like ros2, wait until something publishes or
-    subscribes to it, saying so once (``timeout`` seconds at most; None: as long as it takes)."""
+def _discover_type(node: Any, topic: str, timeout: float | None) -> tuple[str, list[Token]]:
+    """The type of ``topic`` from the graph, and the graph it was found in; like ros2, wait
+    until something publishes or subscribes to it, saying so once (``timeout`` seconds at most;
+    None: as long as it takes)."""
     deadline = None if timeout is None else time.monotonic() + timeout
     warned = False
     while True:
-        types = _topics(graph_tokens(node), True).get(topic, set())
+        tokens = graph_tokens(node)
+        types = _topics(tokens, True).get(topic, set())
         if len(types) == 1:
-            return types.pop()
+            return types.pop(), tokens
         if len(types) > 1:
             raise CliUsageError(
                 f"topic {topic} has several types: {', '.join(sorted(types))}",
@@ -138,13 +139,17 @@ def _echo_qos(tokens: list[Token], topic: str) -> QoSProfile:
 
 
 def _echo(args: argparse.Namespace) -> int:
+    from launchkit.ros.message_data import to_yaml
+    from launchkit.ros.msgs import get_message, normalize_type_name
+
     topic = normalize_topic(args.topic_name)
     given = args.message_type
     msg_class = get_message(given) if given else None
     with cli_node(args) as node:
-        type_name = (
-            normalize_type_name(given) if given else _discover_type(node, topic, args.timeout)
-        )
+        if given:
+            type_name, tokens = normalize_type_name(given), graph_tokens(node)
+        else:
+            type_name, tokens = _discover_type(node, topic, args.timeout)
         msg_class = msg_class or get_message(type_name)
         truncate = None if args.full_length else 128
         done = threading.Event()
@@ -155,7 +160,7 @@ def _echo(args: argparse.Namespace) -> int:
             if args.once:
                 done.set()
 
-        node.create_subscription(msg_class, topic, show, _echo_qos(graph_tokens(node), topic))
+        node.create_subscription(msg_class, topic, show, _echo_qos(tokens, topic))
         _spin_until(node, done)
     return 0
 
@@ -168,6 +173,11 @@ def _spin_until(node: Any, done: threading.Event) -> None:
 
 
 def _pub(args: argparse.Namespace) -> int:
+    from launchkit.ros.clock import Clock, ClockType
+    from launchkit.ros.message_data import from_yaml
+    from launchkit.ros.msgs import get_message
+    from launchkit.ros.rate import Rate
+
     topic = normalize_topic(args.topic_name)
     msg_class = get_message(args.message_type)
     msg = from_yaml(msg_class.__msgtype__, args.values)
@@ -212,9 +222,11 @@ def _one_line(msg: Any) -> str:
 
 
 def _hz(args: argparse.Namespace) -> int:
+    from launchkit.ros.msgs import get_message
+
     topic = normalize_topic(args.topic_name)
     with cli_node(args) as node:
-        type_name = _discover_type(node, topic, None)
+        type_name, tokens = _discover_type(node, topic, None)
         stamps: list[float] = []
         lock = threading.Lock()
 
@@ -227,7 +239,7 @@ def _hz(args: argparse.Namespace) -> int:
             get_message(type_name),
             topic,
             on_message,
-            _echo_qos(graph_tokens(node), topic),
+            _echo_qos(tokens, topic),
             raw=True,
         )
         next_report = time.monotonic() + 1.0
@@ -256,8 +268,7 @@ def _rate_report(stamps: list[float]) -> str:
 
 def _info(args: argparse.Namespace) -> int:
     topic = normalize_topic(args.topic_name)
-    with cli_node(args) as node:
-        tokens = [t for t in graph_tokens(node) if t.topic == topic and t.kind in ("MP", "MS")]
+    tokens = [t for t in graph_once(args) if t.topic == topic and t.kind in ("MP", "MS")]
     if not tokens:
         raise CliUsageError(
             f"unknown topic {topic}", expected="a topic listed by `launchkit topic list`"
@@ -293,8 +304,7 @@ def _endpoint(t: Token, label: str) -> str:
 
 def _type(args: argparse.Namespace) -> int:
     topic = normalize_topic(args.topic_name)
-    with cli_node(args) as node:
-        types = _topics(graph_tokens(node), True).get(topic)
+    types = _topics(graph_once(args), True).get(topic)
     if not types:
         raise CliUsageError(
             f"unknown topic {topic}", expected="a topic listed by `launchkit topic list`"

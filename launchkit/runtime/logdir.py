@@ -9,11 +9,11 @@ locked (a launch still running) are never touched.
 
 from __future__ import annotations
 
-import datetime
 import fcntl
 import os
 import shutil
 import socket
+import time
 from collections.abc import Mapping
 from dataclasses import dataclass
 from pathlib import Path
@@ -90,7 +90,8 @@ def create_run_dir(environment: Mapping[str, str], keep_runs: int | None = None)
     """Make this run's folder (``<stamp>-<host>-<pid>``), point ``latest`` at it, and remove
     the oldest finished launchkit runs beyond ``keep_runs`` (default: from the environment)."""
     root = log_root(environment)
-    stamp = datetime.datetime.now().strftime("%Y-%m-%d-%H-%M-%S-%f")
+    now = time.time()  # as datetime's "%Y-%m-%d-%H-%M-%S-%f", without importing datetime
+    stamp = time.strftime("%Y-%m-%d-%H-%M-%S", time.localtime(now)) + f"-{int(now % 1 * 1e6):06d}"
     run_dir = root / f"{stamp}-{socket.gethostname()}-{os.getpid()}"
     run_dir.mkdir(parents=True, exist_ok=True)
     marker = os.open(run_dir / RUN_MARKER, os.O_RDWR | os.O_CREAT, 0o644)

@@ -2,9 +2,10 @@
 
 Pure logic, no transport: :func:`parse_urdf` checks the text (well-formed XML, a ``<robot>``
 root, known joint types, joints naming links that exist, one tree with one root) and reads each
-joint through yourdfpy; :class:`RobotModel` then answers what ``robot_state_publisher`` and
-``joint_state_publisher`` need: which joints move, the fixed parent→child transforms (for
-``/tf_static``) and the moving ones for given joint positions (for ``/tf``).
+joint's origin, axis, mimic and limits; :class:`RobotModel` then answers what
+``robot_state_publisher`` and ``joint_state_publisher`` need: which joints move, the fixed
+parent→child transforms (for ``/tf_static``) and the moving ones for given joint positions (for
+``/tf``).
 
 Like ROS's KDL parser, ``floating`` and ``planar`` joints are treated as fixed: a joint state
 cannot express them.
@@ -12,11 +13,11 @@ cannot express them.
 
 from __future__ import annotations
 
-import io
+import math
 from collections.abc import Mapping
 from dataclasses import dataclass
+from typing import Any
 
-import yourdfpy
 from lxml import etree
 
 from launchkit.errors import Location, UserError
@@ -164,12 +165,9 @@ def parse_urdf(text: str, source: str = "robot_description") -> RobotModel:
         )
     _check_tree(root, source)
     try:
-        urdf = yourdfpy.URDF.load(
-            io.BytesIO(text.encode()), build_scene_graph=False, load_meshes=False
-        )
-    except Exception as exc:  # yourdfpy reports malformed values with assorted exceptions
+        joints = tuple(_joint(element) for element in root.iterfind("joint"))
+    except ValueError as exc:
         raise UrdfError(f"the robot description cannot be read: {exc}", Location(source)) from None
-    joints = tuple(_joint(j) for j in urdf.robot.joints)
     return RobotModel(str(root.get("name", "")), _root_link(root, source), joints)
 
 
@@ -249,31 +247,42 @@ def _at(source: str, element: etree._Element) -> Location:
     return Location(source, line if isinstance(line, int) else 0)
 
 
-def _joint(joint: yourdfpy.Joint) -> Joint:
-    matrix = joint.origin
-    if matrix is None:
-        translation: Vector = (0.0, 0.0, 0.0)
-        rotation: Quaternion = (0.0, 0.0, 0.0, 1.0)
-    else:
-        translation = (float(matrix[0][3]), float(matrix[1][3]), float(matrix[2][3]))
-        rotation = matrix_to_quaternion([[float(v) for v in row[:3]] for row in matrix[:3]])
-    axis = unit(joint.axis if joint.axis is not None else (1.0, 0.0, 0.0))
+def _joint(element: etree._Element) -> Joint:
+    """One checked ``<joint>`` (its name, type and links exist): origin, axis, mimic, limits.
+
+    Read here rather than through yourdfpy, whose import (trimesh, scipy) took most of a state
+    publisher's start-up; a malformed number raises ValueError.
+    """
+    name = str(element.get("name"))
+    origin = element.find("origin")
+    translation: Vector = (0.0, 0.0, 0.0)
+    rotation: Quaternion = (0.0, 0.0, 0.0, 1.0)
+    if origin is not None:
+        translation = _vector(origin.get("xyz"), (0.0, 0.0, 0.0), name, "origin xyz")
+        roll, pitch, yaw = _vector(origin.get("rpy"), (0.0, 0.0, 0.0), name, "origin rpy")
+        rotation = matrix_to_quaternion(_rpy_matrix(roll, pitch, yaw))
+    axis_element = element.find("axis")
+    axis_text = None if axis_element is None else axis_element.get("xyz")
+    axis = unit(_vector(axis_text, (1.0, 0.0, 0.0), name, "axis xyz"))
     mimic = None
-    if joint.mimic is not None:
+    mimic_element = element.find("mimic")
+    if mimic_element is not None:
         mimic = Mimic(
-            str(joint.mimic.joint),
-            float(joint.mimic.multiplier if joint.mimic.multiplier is not None else 1.0),
-            float(joint.mimic.offset if joint.mimic.offset is not None else 0.0),
+            str(mimic_element.get("joint")),
+            _number(mimic_element.get("multiplier"), 1.0, name, "mimic multiplier"),
+            _number(mimic_element.get("offset"), 0.0, name, "mimic offset"),
         )
+    kind = str(element.get("type"))
     lower = upper = None
-    if joint.limit is not None and joint.type != "continuous":
-        lower = None if joint.limit.lower is None else float(joint.limit.lower)
-        upper = None if joint.limit.upper is None else float(joint.limit.upper)
+    limit = element.find("limit")
+    if limit is not None and kind != "continuous":
+        lower = _number(limit.get("lower"), None, name, "limit lower")
+        upper = _number(limit.get("upper"), None, name, "limit upper")
     return Joint(
-        str(joint.name),
-        str(joint.type),
-        str(joint.parent),
-        str(joint.child),
+        name,
+        kind,
+        str(_end(element, "parent")),
+        str(_end(element, "child")),
         translation,
         rotation,
         axis,
@@ -281,3 +290,39 @@ def _joint(joint: yourdfpy.Joint) -> Joint:
         lower,
         upper,
     )
+
+
+def _end(joint: etree._Element, end: str) -> str | None:
+    element = joint.find(end)
+    return None if element is None else element.get("link")
+
+
+def _vector(text: str | None, default: Vector, joint: str, what: str) -> Vector:
+    if text is None:
+        return default
+    values = text.split()
+    if len(values) != 3:
+        raise ValueError(f"joint {joint!r}: {what} {text!r} is not three numbers")
+    x, y, z = (_number(v, 0.0, joint, what) for v in values)
+    return (x, y, z)
+
+
+def _number(text: str | None, default: float | None, joint: str, what: str) -> Any:
+    if text is None:
+        return default
+    try:
+        return float(text)
+    except ValueError:
+        raise ValueError(f"joint {joint!r}: {what} {text!r} is not a number") from None
+
+
+def _rpy_matrix(roll: float, pitch: float, yaw: float) -> list[list[float]]:
+    """URDF's fixed-axis roll, pitch, yaw as the rotation matrix Rz(yaw)·Ry(pitch)·Rx(roll)."""
+    cr, sr = math.cos(roll), math.sin(roll)
+    cp, sp = math.cos(pitch), math.sin(pitch)
+    cy, sy = math.cos(yaw), math.sin(yaw)
+    return [
+        [cy * cp, cy * sp * sr - sy * cr, cy * sp * cr + sy * sr],
+        [sy * cp, sy * sp * sr + cy * cr, sy * sp * cr - cy * sr],
+        [-sp, cp * sr, cp * cr],
+    ]

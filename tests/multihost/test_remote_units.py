@@ -131,7 +131,7 @@ class FakeAgents:
         self.ignore_kill = ignore_kill
         self.signals: list[int] = []
         self.starts = 0
-        self.may_quit = threading.Event()  # a quitting process exits once this is set
+        self.may_quit = threading.Event()  # a quitting process waits for it (a test clears it)
         self.may_quit.set()
 
     def start(self, process: RemoteProcess) -> int:
@@ -141,8 +141,7 @@ class FakeAgents:
         def run() -> None:
             process.deliver(incarnation, {"kind": "line", "stream": "stdout", "text": "hello"})
             process.deliver(incarnation, {"kind": "line", "stream": "stderr", "text": "warn"})
-            if self.quits:
-                self.may_quit.wait(10)
+            if self.quits and self.may_quit.wait(10):
                 process.deliver(incarnation, {"kind": "exit", "code": 3})
 
         threading.Thread(target=run).start()
@@ -177,7 +176,7 @@ def test_a_remote_process_turns_events_into_lines_and_an_exit() -> None:
     assert process.poll() == 3 and os.read(process.pidfd, 1) == b"x"
     process.deliver(1, {"kind": "line", "stream": "stdout", "text": "late"})  # ignored
     process.close_pidfd()
-    agents.may_quit.clear()  # the new incarnation runs until told
+    agents.may_quit.clear()  # the new incarnation runs until the test lets it quit
     process.spawn()  # a respawn: a new incarnation, new pipes
     assert process.incarnation == 2 and process.poll() is None
     agents.may_quit.set()

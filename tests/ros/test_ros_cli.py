@@ -34,6 +34,7 @@ def test_topic_commands(talker: Child, children: list[Child]) -> None:
     echo = launchkit("topic", "echo", "/chatter", "--once")
     assert echo.returncode == 0, echo.stderr
     assert echo.stdout.startswith("data: hello ") and echo.stdout.endswith("---\n")
+    assert echo.stdout.count("---\n") == 1  # --once: the first message, then exit
     info = launchkit("topic", "info", "/chatter")
     assert "Type: std_msgs/msg/String" in info.stdout and "Publisher count: 1" in info.stdout
 
@@ -143,3 +144,44 @@ def test_topic_list_shows_topics_of_hidden_nodes_but_not_hidden_topics(
     listed = launchkit("topic", "list").stdout.split()
     assert "/from_cli" in listed and "/_hidden/data" not in listed
     assert "/_hidden/data" in launchkit("topic", "list", "-a").stdout.split()
+
+
+def test_listing_asks_the_router_once_and_gets_the_whole_graph(
+    talker: Child, monkeypatch: pytest.MonkeyPatch, capsys: pytest.CaptureFixture[str]
+) -> None:
+    # each command opens a fresh session and asks once, with no settle loop; the router answers
+    # a client's query from everything it knows, so the first answer is the whole graph (a
+    # peer's first query used to come back empty about one time in three)
+    from launchkit.ros import graph
+    from launchkit.ros_cli.main import main
+
+    queries: list[str] = []
+    real = graph.snapshot
+
+    def counted(*args: object, **kwargs: object) -> list[object]:
+        queries.append("query")
+        return list(real(*args, **kwargs))  # type: ignore[arg-type]
+
+    monkeypatch.setattr(graph, "snapshot", counted)
+    for _ in range(10):
+        assert main("topic", ["list"]) == 0
+        assert main("node", ["list"]) == 0
+    out = capsys.readouterr().out.splitlines()
+    assert out.count("/chatter") == 10 and out.count("/talker") == 10
+    assert len(queries) == 20
+
+
+def test_listing_loads_neither_the_message_types_nor_numpy(talker: Child) -> None:
+    probe = (
+        "import sys\n"
+        "from launchkit.cli import main\n"
+        "main(sys.argv[1:])\n"
+        "heavy = ('numpy', 'rosbags', 'yaml', 'lxml', 'launchkit.ros.node', 'launchkit.ros.msgs')\n"
+        "print('LOADED', sorted(m for m in heavy if m in sys.modules))\n"
+    )
+    for argv in (["topic", "list"], ["node", "info", "/talker"], ["service", "list"]):
+        result = subprocess.run(
+            [sys.executable, "-c", probe, *argv], capture_output=True, text=True, timeout=60
+        )
+        assert result.returncode == 0, result.stderr
+        assert result.stdout.splitlines()[-1] == "LOADED []", (argv, result.stdout)

@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import dataclasses
 import hashlib
 import math
 import struct
@@ -155,6 +156,28 @@ def test_camera_sees_the_box_ahead(obstacle_sim: Simulation, seed_urdf: str) -> 
     # The red box straight ahead fills the image centre.
     centre = (24 * 64 + 32) * 3
     r, g, b = image[centre : centre + 3]
+    assert r > 100 and r > 2 * g and r > 2 * b
+
+
+@pytest.mark.parametrize("encoding", ["rgb8", "bgr8", "mono8"])
+def test_camera_encodings_keep_each_pixels_channels(
+    obstacle_sim: Simulation, seed_urdf: str, encoding: str
+) -> None:
+    """The rendered RGBA pixels, packed per encoding: the centre pixel (the red box) keeps its
+    channels in the encoding's order, and every pixel is the one PyBullet rendered there."""
+    entity, plugins = spawn_seed(obstacle_sim, _small_camera(seed_urdf))
+    config = plugins.cameras[0][1]
+    rgb = Camera(obstacle_sim, entity, config).render()
+    image = Camera(obstacle_sim, entity, dataclasses.replace(config, encoding=encoding)).render()
+    pixels = [rgb[i : i + 3] for i in range(0, len(rgb), 3)]
+    if encoding == "rgb8":
+        assert image == rgb
+    elif encoding == "bgr8":
+        assert image == b"".join(p[::-1] for p in pixels)
+    else:
+        assert image == bytes(sum(p) // 3 for p in pixels)
+    centre = 24 * 64 + 32
+    r, g, b = pixels[centre]
     assert r > 100 and r > 2 * g and r > 2 * b
 
 

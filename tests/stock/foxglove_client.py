@@ -111,15 +111,18 @@ class FoxgloveClient:
         await self.ws.send(json.dumps(message))
 
 
-def receive_topics(url: str, topics: list[str], timeout: float = 20.0) -> FoxgloveClient:
-    """Connect to ``url``, wait until ``topics`` are advertised, subscribe to them and wait for a
-    message on each; the client, with what it received."""
+def receive_topics(
+    url: str, topics: list[str], timeout: float = 20.0, advertised: tuple[str, ...] = ()
+) -> FoxgloveClient:
+    """Connect to ``url``, wait until ``topics`` (and ``advertised``, not subscribed to) are
+    advertised, subscribe to ``topics`` and wait for a message on each; the client, with what
+    it received."""
 
     async def session() -> FoxgloveClient:
         async with FoxgloveClient(url) as client:
             await client.wait_for(
-                f"rviz2 to advertise {topics}",
-                lambda: all(t in client.channels for t in topics),
+                f"rviz2 to advertise {[*topics, *advertised]}",
+                lambda: all(t in client.channels for t in [*topics, *advertised]),
                 timeout,
             )
             await client.subscribe(topics)

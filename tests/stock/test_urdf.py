@@ -126,6 +126,16 @@ def test_rotation_helpers_agree() -> None:
             "<parent link='a'/><child link='b'/></joint></robot>",
             "names child link 'b', which is not defined",
         ),
+        (
+            "<robot name='x'><link name='a'/><link name='b'/><joint name='j' type='fixed'>"
+            "<parent link='a'/><child link='b'/><origin xyz='1 2'/></joint></robot>",
+            "joint 'j': origin xyz '1 2' is not three numbers",
+        ),
+        (
+            "<robot name='x'><link name='a'/><link name='b'/><joint name='j' type='revolute'>"
+            "<parent link='a'/><child link='b'/><limit lower='low'/></joint></robot>",
+            "joint 'j': limit lower 'low' is not a number",
+        ),
         ("<robot name='x'><link name='a'/><link name='b'/></robot>", "2 root links (a, b)"),
         (
             "<robot name='x'><link name='a'/><link name='b'/><link name='c'/>"

@@ -65,7 +65,11 @@ def foxglove_view(url: str) -> Any:
 
     def run() -> None:
         try:
-            result["client"] = receive_topics(url, ["/robot_description", "/tf", "/scan"])
+            # the camera's process starts after the robot is spawned: wait for its topic too
+            # (advertised only: subscribing would make it render)
+            result["client"] = receive_topics(
+                url, ["/robot_description", "/tf", "/scan"], 60, advertised=(CAMERA,)
+            )
         except BaseException as error:  # re-raised in the test's thread
             result["error"] = error
 

@@ -11,8 +11,6 @@ from launchkit.errors import LaunchFileError, Location
 from launchkit.frontend.action_parser import ActionParser
 from launchkit.frontend.xml.entity import SourceFile, XmlEntity
 
-XML_SUFFIXES = (".xml", ".launch")
-
 
 class XmlParser:
     """Parses XML launch text; the tags are read by ``actions``."""

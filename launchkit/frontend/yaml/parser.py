@@ -15,8 +15,6 @@ from launchkit.frontend.yaml.document import compose, read_text
 from launchkit.frontend.yaml.entity import YamlEntity
 from launchkit.frontend.yaml.scalars import describe
 
-YAML_SUFFIXES = (".yaml", ".yml")
-
 
 class YamlParser:
     """Parses YAML launch text; the tags are read by ``actions``."""

@@ -5,12 +5,10 @@ from __future__ import annotations
 import functools
 from typing import Any
 
-from rosbags.serde import SerdeError
-
 from launchkit.errors import UserError
-from launchkit.ros.msgs._typestore import typestore
-
-_CDR_HEADER_LEN = 4
+from launchkit.ros.msgs._codec import codec
+from launchkit.ros.msgs._srv_defs import SERVICES
+from launchkit.ros.msgs._typestore import typestore, typestore_for
 
 
 class MessageTypeError(UserError):
@@ -45,10 +43,10 @@ def normalize_type_name(name: str, kind: str = "msg") -> str:
 
 def type_names(kind: str = "msg") -> list[str]:
     """Every known type name of a kind (``msg`` or ``srv``), sorted."""
-    ts = typestore()
+    names = list(typestore(services=kind != "msg").types)  # a copy: services may be added
     if kind == "msg":
-        return sorted(n for n in ts.types if "/msg/" in n)
-    return sorted(n for n in ts.types if "/srv/" in n and not n.endswith(_SRV_PARTS))
+        return sorted(n for n in names if "/msg/" in n)
+    return sorted(n for n in names if "/srv/" in n and not n.endswith(_SRV_PARTS))
 
 
 _SRV_PARTS = ("_Request", "_Response", "_Event")
@@ -56,14 +54,15 @@ _SRV_PARTS = ("_Request", "_Response", "_Event")
 
 def packages() -> set[str]:
     """Names of the packages that have message or service types."""
-    return {name.split("/", 1)[0] for name in typestore().types}
+    names = [*typestore(services=False).types, *SERVICES]  # without registering the services
+    return {name.split("/", 1)[0] for name in names}
 
 
 def get_message(name: str) -> Any:
     """The message class for ``pkg/msg/Name`` (or ``pkg/Name``)."""
     full = normalize_type_name(name, "msg")
     try:
-        return typestore().types[full]
+        return typestore_for(full).types[full]
     except KeyError:
         raise MessageTypeError(
             f"unknown message type {name!r} (expected a ROS 2 Jazzy type such as "
@@ -73,7 +72,7 @@ def get_message(name: str) -> Any:
 
 @functools.cache
 def _service(full: str) -> type[ServiceType]:
-    ts = typestore()
+    ts = typestore_for(full)
     short = full.rsplit("/", 1)[-1]
     return type(
         short,
@@ -91,7 +90,7 @@ def _service(full: str) -> type[ServiceType]:
 def get_service(name: str) -> type[ServiceType]:
     """The service type (with ``.Request``/``.Response``) for ``pkg/srv/Name``."""
     full = normalize_type_name(name, "srv")
-    if full + "_Request" not in typestore().types:
+    if full + "_Request" not in typestore_for(full).types:
         raise MessageTypeError(
             f"unknown service type {name!r} (expected one of: {', '.join(type_names('srv'))})"
         )
@@ -108,23 +107,12 @@ def message_type_name(msg_or_cls: Any) -> str:
 
 def serialize(msg: Any, type_name: str | None = None) -> bytes:
     """CDR bytes (little endian, with the 4-byte encapsulation header) of a message."""
-    return bytes(typestore().serialize_cdr(msg, type_name or msg.__msgtype__))
+    return bytes(codec(type_name or msg.__msgtype__).serialize(msg))
 
 
 def deserialize(data: bytes | memoryview, type_name: str) -> Any:
     """Decode CDR bytes (with header) into a message of ``type_name`` (``pkg/msg/Name``)."""
-    ts = typestore()
-    try:
-        return ts.deserialize_cdr(data, type_name)
-    except SerdeError as exc:
-        if "size mismatch" not in str(exc):
-            raise
-    # Fast CDR pads before an empty trailing 8-byte sequence; rosbags' size check rejects that
-    # valid message, so decode with the low-level function and accept the trailing padding.
-    msgdef = ts.get_msgdef(type_name)
-    decode = msgdef.deserialize_cdr_le if data[1] else msgdef.deserialize_cdr_be
-    message, _ = decode(memoryview(data)[_CDR_HEADER_LEN:], 0, msgdef.cls, ts)
-    return message
+    return codec(type_name).deserialize(data)
 
 
 def type_hash(type_name: str) -> str:
@@ -134,10 +122,11 @@ def type_hash(type_name: str) -> str:
 
 @functools.cache
 def _hash(type_name: str) -> str:
-    return str(typestore().hash_rihs01(type_name))
+    return str(typestore_for(type_name).hash_rihs01(type_name))
 
 
 def message_definition(type_name: str) -> str:
     """The ``.msg`` text of a type with its dependencies (as MCAP/Foxglove ``ros2msg`` want)."""
-    text, _ = typestore().generate_msgdef(type_name, ros_version=2)
+    ts = typestore_for(type_name)
+    text, _ = ts.generate_msgdef(type_name, ros_version=2)
     return str(text)

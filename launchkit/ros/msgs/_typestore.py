@@ -44,27 +44,64 @@ _MSG_DEFAULTS: dict[str, dict[str, Any]] = {
 
 _lock = threading.Lock()
 _store: Typestore | None = None
+_registered: set[str] = set()  # the services of SERVICES registered so far
+_SERVICE_PARTS = ("_Request", "_Response", "_Event")
 
 
-def typestore() -> Typestore:
-    """The process-wide typestore (built on first use: about 0.1 s)."""
-    global _store
+def typestore(services: bool = True) -> Typestore:
+    """The process-wide typestore (built on first use); ``services``: with every service type
+    of launchkit's (what listing them needs). For one type, :func:`typestore_for`."""
     with _lock:
-        if _store is None:
-            _store = _build()
-        return _store
+        store = _built()
+        if services:
+            _register_services(store, [name for name in SERVICES if name not in _registered])
+        return store
+
+
+def typestore_for(type_name: str) -> Typestore:
+    """The typestore, with what looking up ``type_name`` needs: the message types, and for a
+    service's type (``pkg/srv/Name``, ``..._Request``, ...) that one service.
+
+    Parsing and registering a service (generated code for its four types) costs about as much
+    as a few dozen message types: a node registers the six parameter services it serves, and
+    ``launchkit topic echo`` none, instead of all of them at start-up.
+    """
+    with _lock:
+        store = _built()
+        if "/srv/" in type_name:
+            name = type_name
+            for part in _SERVICE_PARTS:
+                name = name.removesuffix(part)
+            if name in SERVICES and name not in _registered:
+                _register_services(store, [name])
+        return store
+
+
+def _built() -> Typestore:
+    global _store
+    if _store is None:
+        _store = _build()
+    return _store
 
 
 def _build() -> Typestore:
     ts = get_typestore(Stores.ROS2_JAZZY)
     _chars_as_uint8(ts)
-    services: dict[str, Any] = {}
-    for name, text in SERVICES.items():
-        services.update(_service_types(name, text))
-    ts.register(services)  # at once: each register() generates and compiles code
     for cls_name in list(ts.types):
         _make_rclpy_like(ts, cls_name)
     return ts
+
+
+def _register_services(ts: Typestore, names: list[str]) -> None:
+    if not names:
+        return
+    services: dict[str, Any] = {}
+    for name in names:
+        services.update(_service_types(name, SERVICES[name]))
+    ts.register(services)  # at once: each register() generates and compiles code
+    for cls_name in services:
+        _make_rclpy_like(ts, cls_name)
+    _registered.update(names)
 
 
 def _chars_as_uint8(ts: Typestore) -> None:

@@ -3,28 +3,52 @@ the robot's description and transforms; print what arrived (for test_robot_two_h
 
 from __future__ import annotations
 
+import asyncio
 import sys
 import urllib.request
 from pathlib import Path
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[2] / "stock"))
-from foxglove_client import receive_topics
+from foxglove_client import FoxgloveClient
 
 from launchkit.ros.msgs import deserialize
+
+TOPICS = ["/robot_description", "/tf"]
+
+
+def _frames(client: FoxgloveClient) -> set[str]:
+    return {
+        t.child_frame_id
+        for raw in client.received.get("/tf", [])
+        for t in deserialize(raw, "tf2_msgs/msg/TFMessage").transforms
+    }
+
+
+async def _receive(url: str, timeout: float) -> FoxgloveClient:
+    # /tf has two publishers (the state publisher's joints, the diff drive's odom -> base):
+    # wait for both, whichever starts first
+    async with FoxgloveClient(url) as client:
+        await client.wait_for(
+            f"rviz2 to advertise {TOPICS}",
+            lambda: all(t in client.channels for t in TOPICS),
+            timeout,
+        )
+        await client.subscribe(TOPICS)
+        await client.wait_for(
+            "the description and the base frame",
+            lambda: "/robot_description" in client.received and "base" in _frames(client),
+            timeout,
+        )
+        return client
 
 
 def main(port: int) -> None:
     with urllib.request.urlopen(f"http://127.0.0.1:{port}/", timeout=20) as page:
         print(f"page: {page.status} {len(page.read())} bytes", flush=True)
-    client = receive_topics(f"ws://127.0.0.1:{port}", ["/robot_description", "/tf"], 60)
+    client = asyncio.run(_receive(f"ws://127.0.0.1:{port}", 60))
     description = deserialize(client.received["/robot_description"][0], "std_msgs/msg/String")
-    frames = {
-        t.child_frame_id
-        for raw in client.received["/tf"]
-        for t in deserialize(raw, "tf2_msgs/msg/TFMessage").transforms
-    }
     print(f"robot: {'three_wheeled_robot' in description.data}", flush=True)
-    print(f"frames: {' '.join(sorted(frames))}", flush=True)
+    print(f"frames: {' '.join(sorted(_frames(client)))}", flush=True)
 
 
 if __name__ == "__main__":

@@ -99,6 +99,9 @@ class RobotModelDisplay extends Display {
     for (const group of this.links.values()) this.root.add(group);
     this.ctx.stats.robotLinkCount = this.links.size;
     this.ctx.robotChanged(model);
+    // draw the new model now: a robot without meshes asks for no later frame, and when its
+    // transforms arrived first nothing else will (the view stayed empty)
+    this.ctx.scene.requestRender();
   }
 
   update() {

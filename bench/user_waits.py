@@ -1,0 +1,290 @@
+"""Issue 15's table in one run: each place a user waits, beside its floor (run by hand).
+
+    python bench/user_waits.py [--runs 5] [--bringups 3] [--camera-seconds 10]
+
+Every row is the median of interleaved runs (the command and its floor alternate, so a load
+change on this shared machine hits both), and is printed with its ratio and the issue's target:
+
+  * ``launchkit run`` of an empty file against ``python -c pass`` (same interpreter);
+  * 100 ``echo`` executables, start to exit, against a Python process that starts the same 100
+    with a plain Popen loop and waits for them (start to exit);
+  * ``launchkit topic list`` / ``node list`` with a router and a talker up, then beside the
+    robot (the bring-up below), against ``python -c "import zenoh"``;
+  * ``launchkit topic echo /odom --once`` beside the robot, against one /odom period;
+  * pub/sub p50 latency of 100 B messages at 1 kHz, launchkit.ros against raw zenoh
+    (bench/transport.py's processes);
+  * README line 1 (``launchkit run robot_wheel gazebo_and_rviz.launch.xml``, here with
+    ``start_rviz:=false`` so runs do not fight over the viewer's port) to the first /odom;
+  * the seed camera (800x800 at 30 Hz, paced at real time) subscribed: frames per wall second,
+    TinyRenderer and EGL (bench/bringup.py's camera case).
+
+Bytecode is written and used (PYTHONDONTWRITEBYTECODE is dropped for the children), as after
+``pip install``. Each row says the machine's load average when it was measured.
+"""
+
+from __future__ import annotations
+
+import argparse
+import os
+import platform
+import socket
+import statistics
+import subprocess
+import sys
+import tempfile
+import time
+from collections.abc import Callable
+from datetime import datetime, timezone
+from pathlib import Path
+from typing import Any
+
+sys.path.insert(0, str(Path(__file__).resolve().parent))
+
+import bringup
+import transport
+
+ENV = {k: v for k, v in os.environ.items() if k != "PYTHONDONTWRITEBYTECODE"}
+PY = sys.executable
+LAUNCHKIT = [PY, "-m", "launchkit"]
+POPEN_LOOP = (
+    "import subprocess\n"
+    "procs = [subprocess.Popen(['echo', 'hi'], stdout=subprocess.DEVNULL) for _ in range(100)]\n"
+    "for p in procs: p.wait()\n"
+)
+TALKER = Path(__file__).resolve().parents[1] / "tests" / "ros" / "nodes" / "talker.py"
+
+
+def wall(argv: list[str], env: dict[str, str]) -> float:
+    """Seconds from spawning ``argv`` to its exit (output discarded; a failure is fatal)."""
+    start = time.perf_counter()
+    subprocess.run(argv, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL, env=env, check=True)
+    return time.perf_counter() - start
+
+
+def interleaved(cases: dict[str, Callable[[], float]], runs: int) -> dict[str, float]:
+    """Median of each case over ``runs`` rounds, the cases taking turns (one warm-up round)."""
+    for action in cases.values():
+        action()
+    samples: dict[str, list[float]] = {name: [] for name in cases}
+    for _ in range(runs):
+        for name, action in cases.items():
+            samples[name].append(action())
+    return {name: statistics.median(values) for name, values in samples.items()}
+
+
+def row(what: str, value: str, floor: str, ratio: str, target: str, met: bool | None) -> None:
+    """One printed result line."""
+    verdict = "n/a" if met is None else ("HIT" if met else "MISS")
+    load = os.getloadavg()[0]
+    print(
+        f"{what:44s} | {value:>10s} | {floor:>24s} | {ratio:>7s} | {target:>12s} | "
+        f"{verdict:4s} | load {load:.1f}",
+        flush=True,
+    )
+
+
+def free_endpoint() -> str:
+    """A free loopback endpoint."""
+    with socket.socket() as sock:
+        sock.bind(("127.0.0.1", 0))
+        return f"tcp/127.0.0.1:{sock.getsockname()[1]}"
+
+
+def startup_rows(runs: int) -> None:
+    """The empty launch file and 100 echo executables."""
+    with tempfile.TemporaryDirectory() as tmp:
+        env = {**ENV, "ROS_LOG_DIR": str(Path(tmp) / "log")}
+        empty = Path(tmp) / "empty.launch.xml"
+        empty.write_text("<launch/>\n")
+        hundred = Path(tmp) / "n100.launch.xml"
+        hundred.write_text("<launch>\n" + '<executable cmd="echo hi"/>\n' * 100 + "</launch>\n")
+        m = interleaved(
+            {
+                "pass": lambda: wall([PY, "-c", "pass"], env),
+                "empty": lambda: wall([*LAUNCHKIT, "run", str(empty)], env),
+                "loop": lambda: wall([PY, "-c", POPEN_LOOP], env),
+                "hundred": lambda: wall([*LAUNCHKIT, "run", str(hundred)], env),
+            },
+            runs,
+        )
+    ratio = m["empty"] / m["pass"]
+    row(
+        "launchkit run, empty file",
+        f"{m['empty'] * 1000:.0f} ms",
+        f"python -c pass {m['pass'] * 1000:.0f} ms",
+        f"{ratio:.2f}x",
+        "<= 2.5x",
+        ratio <= 2.5,
+    )
+    ratio = m["hundred"] / m["loop"]
+    row(
+        "100 echo executables, start to exit",
+        f"{m['hundred'] * 1000:.0f} ms",
+        f"Popen loop {m['loop'] * 1000:.0f} ms",
+        f"{ratio:.2f}x",
+        "<= 1.5x",
+        ratio <= 1.5,
+    )
+
+
+def cli_rows(runs: int, endpoint: str, label: str, echo: bool) -> None:
+    """``topic list``, ``node list`` (and ``topic echo /odom --once``) against the router."""
+    env = {**ENV, "LAUNCHKIT_ROUTER": endpoint}
+    cases: dict[str, Callable[[], float]] = {
+        "zenoh": lambda: wall([PY, "-c", "import zenoh"], env),
+        "topic": lambda: wall([*LAUNCHKIT, "topic", "list"], env),
+        "node": lambda: wall([*LAUNCHKIT, "node", "list"], env),
+    }
+    if echo:
+        cases["echo"] = lambda: wall([*LAUNCHKIT, "topic", "echo", "/odom", "--once"], env)
+    m = interleaved(cases, runs)
+    floor = f"import zenoh {m['zenoh'] * 1000:.0f} ms"
+    for key, what in (("topic", "topic list"), ("node", "node list")):
+        row(
+            f"launchkit {what} ({label})",
+            f"{m[key]:.3f} s",
+            floor,
+            f"{m[key] / m['zenoh']:.1f}x",
+            "<= 0.25 s",
+            m[key] <= 0.25,
+        )
+    if echo:
+        row(
+            "launchkit topic echo /odom --once (robot up)",
+            f"{m['echo']:.3f} s",
+            "one /odom period",
+            "",
+            "<= 0.4 s",
+            m["echo"] <= 0.4,
+        )
+
+
+def idle_cli_rows(runs: int) -> None:
+    """The CLI with a router and one talker up, nothing else running."""
+    from launchkit.ros.router import start_router
+
+    endpoint = free_endpoint()
+    router = start_router(endpoint)
+    talker = subprocess.Popen(
+        [PY, str(TALKER)],
+        env={**ENV, "LAUNCHKIT_ROUTER": endpoint},
+        stdout=subprocess.PIPE,
+        stderr=subprocess.DEVNULL,
+        text=True,
+    )
+    try:
+        assert talker.stdout is not None
+        while "talker ready" not in talker.stdout.readline():
+            pass
+        cli_rows(runs, endpoint, "router + talker", echo=False)
+    finally:
+        talker.terminate()
+        talker.wait(10)
+        router.close()
+
+
+def latency_rows(rounds: int) -> None:
+    """p50 one-way latency of 100 B at 1 kHz, raw zenoh and launchkit.ros taking turns."""
+    endpoint = free_endpoint()
+    os.environ["LAUNCHKIT_ROUTER"] = endpoint
+    from launchkit.ros.router import start_router
+
+    router = start_router(endpoint)
+    raw, lk = [], []
+    try:
+        for _ in range(rounds):
+            raw.append(transport.latency("raw", 100, 1000.0, 2000)[0])
+            lk.append(transport.latency("lk", 100, 1000.0, 2000)[0])
+    finally:
+        router.close()
+    r, k = statistics.median(raw), statistics.median(lk)
+    row(
+        "pub/sub p50 latency, 100 B at 1 kHz",
+        f"{k:.0f} us",
+        f"raw zenoh {r:.0f} us",
+        f"{k / r:.2f}x",
+        "<= 1.3x",
+        k / r <= 1.3,
+    )
+
+
+def odom_period(bring: Any) -> float:
+    """Seconds between /odom messages (over 20 of them)."""
+    from launchkit.ros.msgs.nav_msgs.msg import Odometry
+
+    stamps: list[float] = []
+    sub = bring.node.create_subscription(
+        Odometry, "/odom", lambda _m: stamps.append(time.perf_counter()), 10
+    )
+    bring._spin_until(lambda: len(stamps) >= 21, 30, "21 /odom messages")
+    bring.node.destroy_subscription(sub)
+    return (stamps[20] - stamps[0]) / 20
+
+
+def bringup_rows(runs: int, bringups: int, camera_seconds: float) -> None:
+    """README line 1 to the first /odom; the CLI beside the robot; the camera's frame rate."""
+    from launchkit.ros.msgs.nav_msgs.msg import Odometry
+
+    firsts = []
+    for attempt in range(bringups):
+        bring = bringup.BringUp()
+        try:
+            firsts.append(bring.first(Odometry, "/odom")[1])
+            if attempt == 0:
+                period = odom_period(bring)
+                print(f"# /odom period beside the robot: {period * 1000:.1f} ms", flush=True)
+                cli_rows(runs, bring.router, "robot up", echo=True)
+        finally:
+            bring.stop()
+    first = statistics.median(firsts)
+    row(
+        "README line 1 to first /odom",
+        f"{first:.2f} s",
+        "",
+        "",
+        "<= 1.0 s",
+        first <= 1.0,
+    )
+    for egl, target in ((False, 15.0), (True, 30.0)):
+        rates = [bringup.camera_case(egl, "1.0", camera_seconds)[1] for _ in range(bringups)]
+        fps = statistics.median(rates)
+        row(
+            f"camera 800x800 @30 Hz, {'EGL' if egl else 'TinyRenderer'}",
+            f"{fps:.1f} fps",
+            "30 fps",
+            "",
+            f">= {target:.0f} fps",
+            fps >= target,
+        )
+
+
+def main() -> None:
+    """Measure every row and print the table."""
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("--runs", type=int, default=5, help="interleaved rounds per command")
+    parser.add_argument("--bringups", type=int, default=3, help="robot bring-ups per row")
+    parser.add_argument("--camera-seconds", type=float, default=10.0)
+    parser.add_argument("--only", choices=["startup", "cli", "latency", "robot"])
+    args = parser.parse_args()
+    print(
+        f"# {platform.node()} {platform.machine()}, {os.cpu_count()} cores, Python "
+        f"{platform.python_version()}, {datetime.now(timezone.utc):%Y-%m-%d %H:%M} UTC",
+        flush=True,
+    )
+    print(
+        f"{'where a user waits':44s} | {'launchkit':>10s} | {'floor, same run':>24s} | "
+        f"{'ratio':>7s} | {'target':>12s} | met? | load",
+        flush=True,
+    )
+    if args.only in (None, "startup"):
+        startup_rows(args.runs)
+    if args.only in (None, "cli"):
+        idle_cli_rows(args.runs)
+    if args.only in (None, "latency"):
+        latency_rows(3)
+    if args.only in (None, "robot"):
+        bringup_rows(args.runs, args.bringups, args.camera_seconds)
+
+
+if __name__ == "__main__":
+    main()
