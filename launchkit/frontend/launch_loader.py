@@ -78,4 +78,6 @@ def _looks_like_xml(path: Path) -> bool:
             head = stream.read(512)
     except OSError:
         return True  # the XML reader reports it
+    if head.startswith((b"\xff\xfe", b"\xfe\xff")):  # a UTF-16 byte order mark: XML
+        return True
     return head.lstrip(b"\xef\xbb\xbf \t\r\n").startswith(b"<")

@@ -9,7 +9,7 @@ from typing import TYPE_CHECKING
 
 from launchkit.description.actions.base import Action
 from launchkit.description.substitutions.base import Value, perform
-from launchkit.errors import LaunchkitError, Location, RuntimeLaunchError
+from launchkit.errors import LaunchFileError, LaunchkitError, Location, RuntimeLaunchError
 
 if TYPE_CHECKING:
     from launchkit.description.conditions import Condition
@@ -67,6 +67,14 @@ class Include(Action):
     def execute(self, context: LaunchContext) -> None:
         """Include the file in the current scope; an error inside it names this include."""
         path = self.resolve(context)
+        if path in context.open_files:
+            again = "itself" if path == context.current_file else f"'{path.name}' again"
+            raise LaunchFileError(
+                f"include cycle: '{context.current_file and context.current_file.name}' "
+                f"includes {again} while it is being included",
+                self.location or Location(str(path)),
+                expected="includes that never lead back to a file that includes them",
+            )
         try:
             description = context.loader(path, self.location, self.syntax)
         except LaunchkitError as error:

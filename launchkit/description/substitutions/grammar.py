@@ -17,6 +17,9 @@ from launchkit.description.substitutions import SUBSTITUTIONS
 from launchkit.description.substitutions.base import Substitution, Text, Value
 from launchkit.errors import LaunchFileError, Location
 
+#: How deep ``$(...)`` may nest in one value (real files nest two or three levels).
+MAX_DEPTH = 64
+
 
 def parse_value(text: str, location: Location | None = None) -> Value:
     """Parse ``text`` into literal text and substitutions; ``location`` is where it starts."""
@@ -30,6 +33,7 @@ class _Parser:
         self.text = text
         self.pos = 0
         self.location = location
+        self.depth = 0  # the ``$(`` open around the position
 
     # -- helpers -----------------------------------------------------------------------------
 
@@ -64,6 +68,17 @@ class _Parser:
         return tuple(parts)
 
     def parse_call(self) -> Substitution:
+        self.depth += 1
+        if self.depth > MAX_DEPTH:
+            raise self.error(
+                f"substitutions nested deeper than {MAX_DEPTH}",
+                f"at most {MAX_DEPTH} levels of $(...) inside one another",
+            )
+        call = self._call()
+        self.depth -= 1
+        return call
+
+    def _call(self) -> Substitution:
         start = self.pos
         self.pos += 2  # "$("
         name_start = self.pos

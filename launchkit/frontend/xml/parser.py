@@ -23,27 +23,33 @@ class XmlParser:
     def parse_file(self, path: Path, included_from: Location | None = None) -> LaunchDescription:
         """Read and parse ``path``; ``included_from`` locates an error in reading it."""
         try:
-            text = path.read_text()
+            data = path.read_bytes()
         except OSError as error:
             raise LaunchFileError(
                 f"cannot read '{path}': {error.strerror}", included_from
             ) from None
-        return self.parse_text(text, path)
+        return self.parse_bytes(data, path)
 
     def parse_text(self, text: str, path: Path) -> LaunchDescription:
         """Parse launch XML ``text`` as if read from ``path``."""
-        source = SourceFile(path, text)
+        return self.parse_bytes(text.encode("utf-8", "surrogatepass"), path)
+
+    def parse_bytes(self, data: bytes, path: Path) -> LaunchDescription:
+        """Parse launch XML ``data`` as if read from ``path``: in the encoding its declaration
+        or byte order mark names (lxml reads it), else UTF-8; a byte that is not valid in
+        that encoding is an error at its line and column."""
         parser = etree.XMLParser(remove_comments=True, remove_pis=True, resolve_entities=False)
         try:
-            root = etree.fromstring(text.encode(), parser)
+            root = etree.fromstring(data, parser)
         except etree.XMLSyntaxError as error:
             line, col = error.position
             message = str(error.msg or error).split(", line ")[0]
             raise LaunchFileError(
                 f"malformed XML: {message}",
                 Location(str(path), line, col),
-                expected="well-formed XML",
+                expected="well-formed XML in the encoding it declares (UTF-8 if none)",
             ) from None
+        source = SourceFile(path, _decoded(data, root.getroottree().docinfo.encoding))
         entity = XmlEntity(root, source)
         if entity.tag != "launch":
             raise entity.error(
@@ -52,3 +58,11 @@ class XmlParser:
         deprecated = entity.raw("deprecated")
         entity.assert_fully_read()
         return LaunchDescription(path, self.actions.parse_actions(entity), deprecated)
+
+
+def _decoded(data: bytes, encoding: str | None) -> str:
+    """The text lxml parsed (for columns in messages): ``data`` in its encoding."""
+    try:
+        return data.decode(encoding or "utf-8")
+    except (LookupError, UnicodeDecodeError):  # an encoding Python names otherwise
+        return data.decode("utf-8", "replace")
