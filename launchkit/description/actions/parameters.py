@@ -167,9 +167,15 @@ def params_file(entry: ParamFile, context: LaunchContext) -> Path:
         raise RuntimeLaunchError(
             f"parameter file '{path}' does not exist", entry.location, expected="a YAML file"
         )
+    from launchkit.safe_yaml import compose, read_text
+
+    text = read_text(path, entry.location)  # a located error for bytes that are not UTF-8
     if not entry.allow_substs:
+        compose(text, path)  # refused here, before anything starts, rather than by the node
         return path.resolve()
     from launchkit.description.substitutions.grammar import parse_value
 
-    text = perform(parse_value(path.read_text(), Location(str(path))), context)
-    return context.write_scratch_file("params_", ".yaml", text)
+    text = perform(parse_value(text, Location(str(path))), context)
+    scratch = context.write_scratch_file("params_", ".yaml", text)
+    compose(text, path)  # errors name the user's file (lines as substituted)
+    return scratch
