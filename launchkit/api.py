@@ -16,7 +16,7 @@ from launchkit.description.launch_context import LaunchContext, Runner
 from launchkit.description.launch_description import LaunchDescription, walk
 from launchkit.description.ros_link import RosLink
 from launchkit.errors import LaunchkitError, PackageNotFoundError
-from launchkit.frontend.launch_loader import LaunchLoader
+from launchkit.frontend.launch_loader import LaunchLoader, collector_paused
 from launchkit.packages import PackageIndex
 from launchkit.runtime.hooks import SupervisorHooks
 
@@ -125,7 +125,7 @@ def dry_run(
     context = _context(recorder, arguments, packages, loader, None)
     recorder.context = context
     try:
-        with raising(), context.in_file(tree.top.path):
+        with raising(), context.in_file(tree.top.path), collector_paused():
             for action in tree.top.actions:
                 action.visit(context)
         return tree, recorder.items

@@ -201,5 +201,5 @@ def _var_names(value: object) -> set[str]:
     elif hasattr(value, "args") and isinstance(value, Substitution):
         names |= _var_names(getattr(value, "args", ()))
     elif hasattr(value, "__dataclass_fields__"):
-        names |= _var_names(list(vars(value).values()))
+        names |= _var_names([getattr(value, name) for name in value.__dataclass_fields__])
     return names

@@ -34,7 +34,7 @@ def printable(text: str) -> str:
     return text.translate(_ESCAPES)
 
 
-@dataclass(frozen=True)
+@dataclass(frozen=True, slots=True)  # slots: a large file has one per element and value
 class Location:
     """Where in a launch file something is: 1-based line and column (0 when unknown)."""
 

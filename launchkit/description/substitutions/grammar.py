@@ -13,6 +13,8 @@ The grammar is ROS 2 launch's (``launch/frontend/grammar.lark``):
 
 from __future__ import annotations
 
+import re
+
 from launchkit.description.substitutions import SUBSTITUTIONS
 from launchkit.description.substitutions.base import Substitution, Text, Value
 from launchkit.errors import LaunchFileError, Location
@@ -21,8 +23,18 @@ from launchkit.errors import LaunchFileError, Location
 MAX_DEPTH = 64
 
 
+#: The characters that end a run of literal text at the top, in an unquoted argument, in a
+#: quoted one: the parser jumps over everything else in one step (a large file's values are
+#: mostly literal text).
+_TOP_SPECIAL = re.compile(r"[\\$]")
+_ARGUMENT_SPECIAL = re.compile(r"[ )\\$'\"(]")
+_QUOTED_SPECIAL = {"'": re.compile(r"['\\$]"), '"': re.compile(r'["\\$]')}
+
+
 def parse_value(text: str, location: Location | None = None) -> Value:
     """Parse ``text`` into literal text and substitutions; ``location`` is where it starts."""
+    if "$" not in text and "\\" not in text:
+        return (Text(text),) if text else ()
     return _Parser(text, location).parse_top()
 
 
@@ -48,12 +60,23 @@ class _Parser:
     def at_call(self) -> bool:
         return self.peek() == "$" and self.peek(1) == "("
 
+    def skip_literal(self, special: re.Pattern[str], buffer: list[str]) -> None:
+        """Move over literal text up to the next ``special`` character, into ``buffer``."""
+        match = special.search(self.text, self.pos)
+        end = match.start() if match else len(self.text)
+        if end > self.pos:
+            buffer.append(self.text[self.pos : end])
+            self.pos = end
+
     # -- grammar -----------------------------------------------------------------------------
 
     def parse_top(self) -> Value:
         parts: list[Substitution] = []
         buffer: list[str] = []
-        while self.pos < len(self.text):
+        while True:
+            self.skip_literal(_TOP_SPECIAL, buffer)
+            if self.pos >= len(self.text):
+                break
             char = self.peek()
             if char == "\\" and self.pos + 1 < len(self.text):
                 buffer.append(self.text[self.pos + 1])
@@ -122,6 +145,7 @@ class _Parser:
         parts: list[Substitution] = []
         buffer: list[str] = []
         while True:
+            self.skip_literal(_ARGUMENT_SPECIAL, buffer)
             char = self.peek()
             if char in (" ", ")", ""):
                 break
@@ -150,7 +174,9 @@ class _Parser:
         self.pos += 1
         parts: list[Substitution] = []
         buffer: list[str] = []
+        special = _QUOTED_SPECIAL[quote]
         while True:
+            self.skip_literal(special, buffer)
             char = self.peek()
             if char == "":
                 raise self.error(

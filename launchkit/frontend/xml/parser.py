@@ -12,6 +12,8 @@ from launchkit.frontend.action_parser import ActionParser
 from launchkit.frontend.xml.entity import SourceFile, XmlEntity
 
 XML_SUFFIXES = (".xml", ".launch")
+#: The largest launch file read (a generous bound: the largest real ones are under 100 kB).
+MAX_FILE_SIZE = 256 * 1024 * 1024
 
 
 class XmlParser:
@@ -23,12 +25,18 @@ class XmlParser:
     def parse_file(self, path: Path, included_from: Location | None = None) -> LaunchDescription:
         """Read and parse ``path``; ``included_from`` locates an error in reading it."""
         try:
-            data = path.read_bytes()
+            size = path.stat().st_size
+            if size > MAX_FILE_SIZE:
+                raise LaunchFileError(
+                    f"the file is {size} bytes long",
+                    included_from or Location(str(path)),
+                    expected=f"a launch file of at most {MAX_FILE_SIZE} bytes",
+                )
+            return self.parse_bytes(path.read_bytes(), path)  # no name holds the bytes
         except OSError as error:
             raise LaunchFileError(
                 f"cannot read '{path}': {error.strerror}", included_from
             ) from None
-        return self.parse_bytes(data, path)
 
     def parse_text(self, text: str, path: Path) -> LaunchDescription:
         """Parse launch XML ``text`` as if read from ``path``."""
@@ -50,6 +58,7 @@ class XmlParser:
                 expected="well-formed XML in the encoding it declares (UTF-8 if none)",
             ) from None
         source = SourceFile(path, _decoded(data, root.getroottree().docinfo.encoding))
+        del data  # a large file: its bytes go before its actions are built
         entity = XmlEntity(root, source)
         if entity.tag != "launch":
             raise entity.error(
