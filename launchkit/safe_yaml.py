@@ -12,6 +12,7 @@ about; the text must be UTF-8.
 
 from __future__ import annotations
 
+import stat
 from collections.abc import Sequence
 from pathlib import Path
 from typing import Any
@@ -22,6 +23,8 @@ from launchkit.errors import LaunchFileError, Location
 
 #: The deepest nesting of mappings and lists accepted (launch files use about ten levels).
 MAX_DEPTH = 100
+#: The largest YAML file read (launch files and params files are kilobytes).
+MAX_FILE_SIZE = 256 * 1024 * 1024
 #: How many nodes all aliases of a file may add together, once expanded.
 MAX_ALIAS_NODES = 100_000
 #: The longest scalar read as anything but text: a longer number costs quadratic time (YAML
@@ -94,10 +97,20 @@ class Node:
 
 def read_text(path: Path, included_from: Location | None) -> str:
     """The file's text; bytes that are not UTF-8 are an error at their line and column."""
+    where = included_from or Location(str(path))
     try:
+        status = path.stat()
+        if not stat.S_ISREG(status.st_mode):  # /dev/zero or a FIFO would never end
+            raise LaunchFileError("not a regular file", where, expected="a YAML file")
+        if status.st_size > MAX_FILE_SIZE:
+            raise LaunchFileError(
+                f"the file is {status.st_size} bytes long",
+                where,
+                expected=f"a YAML file of at most {MAX_FILE_SIZE} bytes",
+            )
         data = path.read_bytes()
     except OSError as error:
-        raise LaunchFileError(f"cannot read '{path}': {error.strerror}", included_from) from None
+        raise LaunchFileError(f"cannot read '{path}': {error.strerror}", where) from None
     try:
         return data.decode("utf-8-sig")
     except UnicodeDecodeError as error:

@@ -22,5 +22,7 @@ _COMMON = {
     "suppress_health_check": [HealthCheck.too_slow, HealthCheck.data_too_large],
 }
 settings.register_profile("ci", max_examples=40, derandomize=True, **_COMMON)
-settings.register_profile("fuzz", max_examples=int(os.environ.get("LAUNCHKIT_FUZZ_EXAMPLES", "5000")), **_COMMON)
+settings.register_profile(
+    "fuzz", max_examples=int(os.environ.get("LAUNCHKIT_FUZZ_EXAMPLES", "5000")), **_COMMON
+)
 settings.load_profile(os.environ.get("LAUNCHKIT_FUZZ_PROFILE", "ci"))

@@ -65,6 +65,12 @@ def element(draw: st.DrawFn, depth: int = 0) -> str:
 def xml_launch_file(draw: st.DrawFn) -> bytes:
     """An XML launch file in one of several encodings (declared or not, rightly or not)."""
     body = "".join(draw(st.lists(element(1), max_size=6)))
+    if draw(st.integers(0, 4)) == 0:  # deep nesting: of elements, of substitutions
+        depth = draw(st.integers(0, 300))
+        tag = draw(st.sampled_from(["group", "timer", "launch", "let"]))
+        body = f"<{tag}>" * depth + body + f"</{tag}>" * depth
+        nested = "$(var " * depth + "x" + ")" * depth
+        body += f"<let name='x' value={quoteattr(nested)}/>"
     text = f"<launch>\n{body}\n</launch>\n"
     encoding = draw(st.sampled_from(["utf-8", "utf-16", "latin-1", "utf-8-sig", "cp1252"]))
     declare = draw(st.sampled_from([None, encoding, "UTF-8", "UTF-16", "ISO-8859-1", "bogus"]))
@@ -79,9 +85,7 @@ def yaml_entity(depth: int = 0) -> st.SearchStrategy[object]:
     attributes = st.dictionaries(st.sampled_from(ATTRIBUTES), scalar, max_size=5)
     if depth < 3:
         children = st.lists(st.deferred(lambda: yaml_entity(depth + 1)), max_size=3)
-        attributes = st.builds(
-            lambda a, c: {**a, "children": c} if c else a, attributes, children
-        )
+        attributes = st.builds(lambda a, c: {**a, "children": c} if c else a, attributes, children)
     return st.dictionaries(st.sampled_from(TAGS), attributes, min_size=1, max_size=1)
 
 

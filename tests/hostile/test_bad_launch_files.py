@@ -10,6 +10,7 @@ from pathlib import Path
 import pytest
 
 from launchkit.description.substitutions.grammar import MAX_DEPTH
+from launchkit.frontend.action_parser import MAX_NESTING
 from tests.hostile.helpers import CORPUS, assert_located_error, launchkit
 
 #: file -> (where the error is, what it says), both regular expressions
@@ -98,3 +99,20 @@ def test_a_file_included_twice_but_not_inside_itself_is_no_cycle(tmp_path: Path)
     result = launchkit("run", top)
     assert result.returncode == 0, result.stderr
     assert result.stdout.count("leaf") == 2
+
+
+@pytest.mark.parametrize("command", ["check", "run"])
+def test_actions_nested_too_deep_are_refused_with_the_limit(tmp_path: Path, command: str) -> None:
+    depth = 250  # within lxml's 256 levels; a RecursionError before the limit
+    path = tmp_path / "groups.launch.xml"
+    path.write_text(
+        "<launch>" + "<group>" * depth + '<log message="hi"/>' + "</group>" * depth + "</launch>"
+    )
+    assert_located_error(
+        launchkit(command, path), r"groups\.launch\.xml:1:\d+", f"nested deeper than {MAX_NESTING}"
+    )
+    path.write_text(
+        "<launch>" + "<group>" * (MAX_NESTING - 1) + '<log message="deep"/>'
+        + "</group>" * (MAX_NESTING - 1) + "</launch>"
+    )  # fmt: skip
+    assert "deep" in launchkit("run", path).stdout

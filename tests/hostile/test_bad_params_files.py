@@ -77,3 +77,12 @@ def test_merge_keys_and_anchors_of_an_ordinary_params_file_still_load(tmp_path: 
         "limits.max": [1, 2.5],
         "limits.name": "x",
     }
+
+
+def test_a_params_file_that_never_ends_is_refused_at_once() -> None:
+    # /dev/zero is no regular file: reading it would never end (and fill memory)
+    result = launchkit(
+        "exec", "robot_state_publisher", "robot_state_publisher", "--ros-args",
+        "--params-file", "/dev/zero",
+    )  # fmt: skip
+    assert_located_error(result, "/dev/zero", "not a regular file")

@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import stat
 from pathlib import Path
 
 from lxml import etree
@@ -25,10 +26,16 @@ class XmlParser:
     def parse_file(self, path: Path, included_from: Location | None = None) -> LaunchDescription:
         """Read and parse ``path``; ``included_from`` locates an error in reading it."""
         try:
-            size = path.stat().st_size
-            if size > MAX_FILE_SIZE:
+            status = path.stat()
+            if not stat.S_ISREG(status.st_mode):  # /dev/zero or a FIFO would never end
                 raise LaunchFileError(
-                    f"the file is {size} bytes long",
+                    "not a regular file",
+                    included_from or Location(str(path)),
+                    expected="an XML launch file",
+                )
+            if status.st_size > MAX_FILE_SIZE:
+                raise LaunchFileError(
+                    f"the file is {status.st_size} bytes long",
                     included_from or Location(str(path)),
                     expected=f"a launch file of at most {MAX_FILE_SIZE} bytes",
                 )
