@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import re
 import stat
 from pathlib import Path
 
@@ -59,6 +60,9 @@ class XmlParser:
         except etree.XMLSyntaxError as error:
             line, col = error.position
             message = str(error.msg or error).split(", line ")[0]
+            undecodable = _undecodable(data, path) if "encod" in message.lower() else None
+            if undecodable is not None:
+                raise undecodable from None
             raise LaunchFileError(
                 f"malformed XML: {message}",
                 Location(str(path), line, col),
@@ -74,6 +78,32 @@ class XmlParser:
         deprecated = entity.raw("deprecated")
         entity.assert_fully_read()
         return LaunchDescription(path, self.actions.parse_actions(entity), deprecated)
+
+
+_DECLARED = re.compile(rb"""^\s*<\?xml[^>]*encoding\s*=\s*["']([A-Za-z0-9._-]+)["']""")
+
+
+def _undecodable(data: bytes, path: Path) -> LaunchFileError | None:
+    """The first byte that is not valid in the file's encoding (declared, else UTF-8), at its
+    line and column and byte offset; None when there is none (or a byte order mark rules)."""
+    if data.startswith((b"\xff\xfe", b"\xfe\xff")):
+        return None
+    declared = _DECLARED.match(data[:200])
+    encoding = declared.group(1).decode() if declared else "utf-8"
+    try:
+        data.decode(encoding)
+        return None
+    except LookupError:
+        return None  # lxml named the unknown encoding itself
+    except UnicodeDecodeError as error:
+        start = error.start
+    line = data.count(b"\n", 0, start) + 1
+    col = start - (data.rfind(b"\n", 0, start) + 1) + 1
+    return LaunchFileError(
+        f"byte 0x{data[start]:02x} at offset {start} is not valid {encoding}",
+        Location(str(path), line, col),
+        expected=f"{encoding} text, or an <?xml encoding=...?> declaration naming the file's",
+    )
 
 
 def _decoded(data: bytes, encoding: str | None) -> str:
