@@ -214,10 +214,10 @@ def _run_with_events(args: argparse.Namespace, fd: int) -> int:
 def _launch(args: argparse.Namespace, hooks: SupervisorHooks | None = None) -> int:
     from launchkit import api
     from launchkit.checks import parse_launch_arguments
-    from launchkit.packages import PackageIndex
+    from launchkit.packages import PackageIndex, is_file
 
     files = [i for i in args.items if ":=" not in i]
-    if files and Path(files[0]).is_file() and args.items[0] == files[0]:
+    if files and is_file(Path(files[0])) and args.items[0] == files[0]:
         files = files[:1]  # FILE then arguments: anything else is a malformed argument
     elif len(files) > 2 or not files or any(":=" in i for i in args.items[: len(files)]):
         raise UserError(

@@ -21,6 +21,7 @@ from launchkit.frontend.action_parser import ActionParser
 from launchkit.frontend.tags import standard_parser
 from launchkit.frontend.xml.parser import XML_SUFFIXES, XmlParser
 from launchkit.frontend.yaml.parser import YAML_SUFFIXES, YamlParser
+from launchkit.packages import is_file
 
 #: The syntaxes an include may ask for: None (by suffix), "python", "frontend" (XML or YAML).
 SYNTAXES = (None, "python", "frontend")
@@ -74,7 +75,7 @@ class LaunchLoader:
 
     def _frontend(self, path: Path, syntax: str | None) -> str | None:
         suffix = path.suffix
-        if syntax == "python" or (syntax is None and suffix == ".py" and path.is_file()):
+        if syntax == "python" or (syntax is None and suffix == ".py" and is_file(path)):
             return "python"
         if suffix in YAML_SUFFIXES:
             return "yaml"

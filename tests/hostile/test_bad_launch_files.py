@@ -33,6 +33,12 @@ CASES = {
     ),
     "self_include.launch.yaml": (r"self_include\.launch\.yaml:3:3", "include cycle"),
     "self_include.launch.py": (r"self_include\.launch\.py:13", "include cycle"),
+    # names longer than the system allows (found by the fuzzer: an OSError before)
+    "long_include_name.launch.yaml": (
+        r"long_include_name\.launch\.yaml:4:3",
+        "included launch file .* does not exist",
+    ),
+    "long_names.launch.xml": (r"long_names\.launch\.xml:3:\d+", "parameter file .* does not exist"),
     # Python launch files: the line in the user's file, no launchkit frames
     "syntax_error.launch.py": (r"syntax_error\.launch\.py:4:\d+", "invalid Python"),
     "raises_at_import.launch.py": (r"raises_at_import\.launch\.py:4", "KeyError: 'missing'"),
@@ -119,3 +125,10 @@ def test_actions_nested_too_deep_are_refused_with_the_limit(tmp_path: Path, comm
         + "</group>" * (MAX_NESTING - 1) + "</launch>"
     )  # fmt: skip
     assert "deep" in launchkit("run", path).stdout
+
+
+def test_a_launch_file_name_too_long_for_the_system_is_one_line() -> None:
+    result = launchkit("check", "9" * 5000 + ".launch.xml")
+    assert result.returncode == 2, result.stderr
+    assert "Traceback" not in result.stderr
+    assert result.stderr.startswith("error: launch file '999")

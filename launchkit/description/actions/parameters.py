@@ -9,6 +9,7 @@ from typing import TYPE_CHECKING, Any
 
 from launchkit.description.substitutions.base import Value, perform
 from launchkit.errors import Location, RuntimeLaunchError
+from launchkit.packages import is_file
 
 if TYPE_CHECKING:
     from launchkit.description.launch_context import LaunchContext
@@ -163,7 +164,7 @@ def params_file(entry: ParamFile, context: LaunchContext) -> Path:
     """The file a ``<param from=...>`` names (a copy with its substitutions performed when
     ``allow_substs``); an error when it does not exist."""
     path = Path(perform(entry.path, context))
-    if not path.is_file():
+    if not is_file(path):
         raise RuntimeLaunchError(
             f"parameter file '{path}' does not exist", entry.location, expected="a YAML file"
         )
