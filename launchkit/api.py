@@ -16,8 +16,8 @@ from launchkit.description.launch_context import LaunchContext, Runner
 from launchkit.description.launch_description import LaunchDescription, walk
 from launchkit.description.ros_link import RosLink
 from launchkit.errors import LaunchkitError, PackageNotFoundError
-from launchkit.frontend.launch_loader import LaunchLoader
-from launchkit.packages import PackageIndex
+from launchkit.frontend.launch_loader import LaunchLoader, collector_paused
+from launchkit.packages import PackageIndex, is_file
 from launchkit.runtime.hooks import SupervisorHooks
 
 if TYPE_CHECKING:
@@ -34,7 +34,7 @@ def resolve_launch_file(target: str, filename: str | None, packages: PackageInde
     if filename is not None:
         return packages.launch_file(target, filename)
     path = Path(target).expanduser()
-    if path.is_file():
+    if is_file(path):
         return path.resolve()
     if os.sep in target:
         raise PackageNotFoundError(f"launch file '{target}' does not exist", expected="a file")
@@ -125,7 +125,7 @@ def dry_run(
     context = _context(recorder, arguments, packages, loader, None)
     recorder.context = context
     try:
-        with raising(), context.in_file(tree.top.path):
+        with raising(), context.in_file(tree.top.path), collector_paused():
             for action in tree.top.actions:
                 action.visit(context)
         return tree, recorder.items

@@ -32,7 +32,7 @@ from launchkit.errors import (
     PackageNotFoundError,
 )
 from launchkit.frontend.launch_loader import LaunchLoader
-from launchkit.packages import PackageIndex
+from launchkit.packages import PackageIndex, exists, is_file
 
 
 class CheckedTree:
@@ -80,7 +80,7 @@ def check_tree(
             if included is None or included in tree.files:
                 continue
             try:
-                if not included.is_file():
+                if not is_file(included):
                     if _always_runs(action, description):
                         raise LaunchFileError(
                             f"included launch file '{included}' does not exist",
@@ -128,7 +128,7 @@ def static_path(include: Include, current: Path, packages: PackageIndex) -> Path
             return None
         parts.append(text)
     path = Path("".join(parts))
-    if not path.is_absolute() and not path.exists():
+    if not path.is_absolute() and not exists(path):
         path = current.parent / path
     return path.resolve()
 
@@ -201,5 +201,5 @@ def _var_names(value: object) -> set[str]:
     elif hasattr(value, "args") and isinstance(value, Substitution):
         names |= _var_names(getattr(value, "args", ()))
     elif hasattr(value, "__dataclass_fields__"):
-        names |= _var_names(list(vars(value).values()))
+        names |= _var_names([getattr(value, name) for name in value.__dataclass_fields__])
     return names

@@ -18,7 +18,7 @@ from typing import TYPE_CHECKING, NoReturn
 
 from launchkit._argparse import CommandParser
 from launchkit._exit import exit_promptly
-from launchkit.errors import LaunchkitError, UserError
+from launchkit.errors import LaunchkitError, UserError, printable
 
 if TYPE_CHECKING:
     from launchkit.runtime.hooks import SupervisorHooks
@@ -214,10 +214,10 @@ def _run_with_events(args: argparse.Namespace, fd: int) -> int:
 def _launch(args: argparse.Namespace, hooks: SupervisorHooks | None = None) -> int:
     from launchkit import api
     from launchkit.checks import parse_launch_arguments
-    from launchkit.packages import PackageIndex
+    from launchkit.packages import PackageIndex, is_file
 
     files = [i for i in args.items if ":=" not in i]
-    if files and Path(files[0]).is_file() and args.items[0] == files[0]:
+    if files and is_file(Path(files[0])) and args.items[0] == files[0]:
         files = files[:1]  # FILE then arguments: anything else is a malformed argument
     elif len(files) > 2 or not files or any(":=" in i for i in args.items[: len(files)]):
         raise UserError(
@@ -229,13 +229,13 @@ def _launch(args: argparse.Namespace, hooks: SupervisorHooks | None = None) -> i
     path = api.resolve_launch_file(files[0], files[1] if len(files) == 2 else None, packages)
     try:
         if args.command == "check":
-            print(api.check_report(path, arguments))
+            _print(api.check_report(path, arguments))
             return 0
         if args.show_args:
-            print(api.show_arguments(path))
+            _print(api.show_arguments(path))
             return 0
         if args.print_description:
-            print(api.describe(path, arguments, bridge=args.bridge))
+            _print(api.describe(path, arguments, bridge=args.bridge))
             return 0
     except LaunchkitError as error:
         error.exit_status = 2  # as for `run`: found before anything would start
@@ -259,6 +259,11 @@ def _launch(args: argparse.Namespace, hooks: SupervisorHooks | None = None) -> i
     except LaunchkitError as error:
         error.exit_status = 2  # raised before anything started: the input is at fault
         raise
+
+
+def _print(report: str) -> None:
+    """A report's lines, control characters escaped (names and commands come from files)."""
+    print("\n".join(printable(line) for line in report.split("\n")))
 
 
 def _pkg(args: argparse.Namespace, packages: object) -> int:

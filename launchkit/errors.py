@@ -19,8 +19,22 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 
+_NAMED_CONTROLS = {"\n": "\\n", "\r": "\\r", "\0": "\\0"}
+#: Control characters (C0 but tab, DEL, C1) as escapes: a name or a file must not be able to
+#: move the cursor, clear the screen or forge a line in launchkit's own messages.
+_ESCAPES = {
+    code: _NAMED_CONTROLS.get(chr(code), f"\\x{code:02x}")
+    for code in [*range(0x20), *range(0x7F, 0xA0)]
+    if code != 0x09
+}
 
-@dataclass(frozen=True)
+
+def printable(text: str) -> str:
+    """``text`` with its control characters escaped (``\\x1b``, ``\\r``, ``\\n``), tabs kept."""
+    return text.translate(_ESCAPES)
+
+
+@dataclass(frozen=True, slots=True)  # slots: a large file has one per element and value
 class Location:
     """Where in a launch file something is: 1-based line and column (0 when unknown)."""
 
@@ -86,10 +100,11 @@ class LaunchkitError(Exception):
         if self.location is not None:
             where = " -> ".join(str(place) for place in [*self.include_chain, self.location])
             text = f"{where}: {text}"
+        text = printable(text)
         for line in self.quoted:
-            text += f"\n  | {line}"
+            text += f"\n  | {printable(line)}"
         if self.hint:
-            text += f"\n  hint: {self.hint}"
+            text += f"\n  hint: {printable(self.hint)}"
         return text
 
     def __str__(self) -> str:

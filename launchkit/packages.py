@@ -25,6 +25,23 @@ ENTRY_POINT_GROUP = "launchkit.packages"
 LAUNCH_FOLDERS = ("", "launch", "launch_xml")
 
 
+def is_file(path: Path) -> bool:
+    """Whether ``path`` is a file; False too when the system refuses to look (a name too long,
+    which :meth:`Path.is_file` raises for)."""
+    try:
+        return path.is_file()
+    except OSError:
+        return False
+
+
+def exists(path: Path) -> bool:
+    """Whether ``path`` exists; False too when the system refuses to look."""
+    try:
+        return path.exists()
+    except OSError:
+        return False
+
+
 @dataclass(frozen=True)
 class PythonPackage:
     """A ROS-style package provided by a Python distribution.
@@ -77,7 +94,7 @@ class PackageIndex:
     def _ament_package(self, name: str) -> FoundPackage | None:
         for prefix in self._prefixes:
             marker = prefix / "share" / "ament_index" / "resource_index" / "packages" / name
-            if marker.exists():
+            if exists(marker):
                 return FoundPackage(name, prefix, prefix / "share" / name, f"ament:{prefix}")
         return None
 
@@ -143,7 +160,7 @@ class PackageIndex:
             )
         libdir = found.prefix / "lib" / package
         candidate = libdir / executable
-        if candidate.is_file() and os.access(candidate, os.X_OK):
+        if is_file(candidate) and os.access(candidate, os.X_OK):
             return [str(candidate)]
         raise PackageNotFoundError(
             f"executable '{executable}' not found in package '{package}'",
@@ -173,7 +190,7 @@ class PackageIndex:
         """``launchkit run PKG FILE``: FILE in the package's share dir or its launch folders."""
         share = self.share_dir(package)
         for candidate in _launch_candidates(share, filename):
-            if candidate.is_file():
+            if is_file(candidate):
                 return candidate
         if filename in self.executables(package):
             raise PackageNotFoundError(
@@ -198,7 +215,7 @@ class PackageIndex:
             except PackageNotFoundError:
                 continue
             for candidate in _launch_candidates(share, filename):
-                if candidate.is_file():
+                if is_file(candidate):
                     matches.append(candidate)
                     break
         return matches

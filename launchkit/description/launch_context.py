@@ -170,6 +170,8 @@ class LaunchContext:
         self.initial_environment = dict(environment)
         self.scope = Scope(configurations=dict(configurations or {}), environment=environment)
         self.current_file: Path | None = None
+        #: the files whose actions are being visited, outermost first (an include cycle)
+        self.open_files: list[Path] = []
         self.anon_names: dict[str, str] = {}
         self._log_dir = log_dir
         self._stack: list[Scope] = []
@@ -284,13 +286,18 @@ class LaunchContext:
             self.scope = self._stack.pop()
 
     @contextmanager
-    def in_file(self, path: Path) -> Iterator[None]:
-        """Run the body as if written in ``path`` (``$(dirname)``, relative includes)."""
+    def in_file(self, path: Path, *, opened: bool = True) -> Iterator[None]:
+        """Run the body as if written in ``path`` (``$(dirname)``, relative includes);
+        ``opened``: the body visits the file's actions (not a timer's, later)."""
         previous, self.current_file = self.current_file, path
+        if opened:
+            self.open_files.append(path)
         try:
             yield
         finally:
             self.current_file = previous
+            if opened:
+                self.open_files.pop()
 
     def snapshot(self) -> Snapshot:
         """Capture the scope and file for a timer."""
@@ -299,7 +306,10 @@ class LaunchContext:
     @contextmanager
     def restored(self, snapshot: Snapshot) -> Iterator[None]:
         """Run the body in a captured scope and file."""
-        with self.scoped(snapshot.scope.copy()), self.in_file(snapshot.current_file or Path()):
+        with (
+            self.scoped(snapshot.scope.copy()),
+            self.in_file(snapshot.current_file or Path(), opened=False),
+        ):
             if snapshot.current_file is None:
                 self.current_file = None
             yield

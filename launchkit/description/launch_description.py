@@ -25,22 +25,24 @@ class LaunchDescription:
     def required_arguments(self) -> list[DeclareArgument]:
         """``<arg>``s without a default that are reached unconditionally at the top level."""
         found: list[DeclareArgument] = []
-        pending = list(self.actions)
+        pending = self.actions[::-1]  # a stack, next action last (pop(0) is quadratic)
         while pending:
-            action = pending.pop(0)
+            action = pending.pop()
             if action.condition is not None:
                 continue
             if isinstance(action, DeclareArgument) and action.default is None:
                 found.append(action)
             elif isinstance(action, Group) and action.forwarding:
-                pending[0:0] = action.actions
+                pending.extend(reversed(action.actions))
         return found
 
 
 def walk(actions: list[Action]) -> list[Action]:
     """Every action in ``actions`` and their children, depth first, in document order."""
     out: list[Action] = []
-    for action in actions:
+    pending = actions[::-1]  # a stack, next action last: no recursion, linear
+    while pending:
+        action = pending.pop()
         out.append(action)
-        out.extend(walk(list(action.children())))
+        pending.extend(reversed(list(action.children())))
     return out

@@ -14,6 +14,10 @@ from launchkit.description.actions.base import Action
 from launchkit.description.conditions import Condition
 from launchkit.frontend.base_entity import Entity
 
+#: How deep actions may nest (a group in a group ...; real files nest a few levels): parsing
+#: and evaluating recurse once per level.
+MAX_NESTING = 100
+
 #: Parses one tag's entity into its action; the parser is there for nested actions.
 TagParser = Callable[[Entity, "ActionParser"], Action]
 
@@ -30,6 +34,7 @@ class ActionParser:
 
     def __init__(self) -> None:
         self._parsers: dict[str, TagParser] = {}
+        self._depth = 0  # actions open around the one being parsed
 
     def register(self, name: str, parser: TagParser) -> None:
         """Have ``parser`` read tag ``name``; a tag registered twice is a programming error."""
@@ -55,7 +60,16 @@ class ActionParser:
                 hint=_ROS1_HINTS.get(entity.tag),
             )
         condition = parse_condition(entity)
-        action = parse(entity, self)
+        if self._depth >= MAX_NESTING:
+            raise entity.error(
+                f"actions nested deeper than {MAX_NESTING}",
+                expected=f"at most {MAX_NESTING} levels of <group>, <timer>, ... in one another",
+            )
+        self._depth += 1
+        try:
+            action = parse(entity, self)
+        finally:
+            self._depth -= 1
         action.condition = condition
         action.location = entity.location
         entity.assert_fully_read()

@@ -126,6 +126,8 @@ class Entity(ABC):
         text = self.raw(name, native)
         if text is None:
             return None
+        if "$" not in text and "\\" not in text:  # plain text: no location to find (large files)
+            return parse_value(text)
         return parse_value(text, self.attribute_location(name))
 
     def required(self, name: str, what: str = "") -> Value:

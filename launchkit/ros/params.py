@@ -9,8 +9,9 @@ from typing import Any
 
 import yaml
 
-from launchkit.errors import UserError
+from launchkit.errors import Location, UserError
 from launchkit.ros.arguments import RosArguments
+from launchkit.safe_yaml import load_file
 
 
 class ParameterError(UserError):
@@ -148,20 +149,13 @@ def overrides_for(args: RosArguments, node_name: str, node_fqn: str) -> dict[str
 
 def load_params_file(path: Path, node_fqn: str) -> dict[str, Any]:
     """The parameters a ROS params YAML file gives ``node_fqn`` (``/**``, names, wildcards)."""
-    try:
-        document = yaml.safe_load(path.read_text(encoding="utf-8"))
-    except OSError as exc:
-        raise ParameterError(
-            f"cannot read parameter file {str(path)!r}: {exc.strerror}",
-            expected="a readable YAML file",
-        ) from None
-    except yaml.YAMLError as exc:
-        raise ParameterError(f"parameter file {str(path)!r} is not valid YAML: {exc}") from None
+    document = load_file(path)  # located errors; bounded depth, aliases and numbers
     if document is None:
         return {}
     if not isinstance(document, dict):
         raise ParameterError(
             f"parameter file {str(path)!r} has no node entries",
+            Location(str(path)),
             expected="'/**:' or '<node name>:' keys with 'ros__parameters:'",
         )
     values: dict[str, Any] = {}
@@ -171,12 +165,14 @@ def load_params_file(path: Path, node_fqn: str) -> dict[str, Any]:
         if not isinstance(section, dict) or "ros__parameters" not in section:
             raise ParameterError(
                 f"parameter file {str(path)!r}: entry {key!r} has no 'ros__parameters'",
+                Location(str(path)),
                 expected=f"{key}: {{ros__parameters: {{name: value}}}}",
             )
         params = section["ros__parameters"] or {}
         if not isinstance(params, dict):
             raise ParameterError(
-                f"parameter file {str(path)!r}: 'ros__parameters' of {key!r} is not a mapping"
+                f"parameter file {str(path)!r}: 'ros__parameters' of {key!r} is not a mapping",
+                Location(str(path)),
             )
         values.update(flatten(params))
     return values

@@ -1,7 +1,9 @@
 """Where launch lines and child output go: the screen, ``launch.log``, per-process files.
 
 Screen lines keep ROS's shapes: ``[LEVEL] [logger]: message`` for the launcher's own lines and
-``[name-N] line`` for a child's, all on stdout; colours only when stdout is a terminal. Log
+``[name-N] line`` for a child's, all on stdout; colours only when stdout is a terminal. Control
+characters in the launcher's lines and in a child's ``[name-N]`` are escaped (a child's own text
+is passed on as it is). Log
 files are rotated and capped (:mod:`launchkit.runtime.logfiles`).
 """
 
@@ -11,6 +13,7 @@ import sys
 from pathlib import Path
 from typing import IO
 
+from launchkit.errors import printable
 from launchkit.runtime.logdir import LogLimits
 from launchkit.runtime.logfiles import RunLogs
 
@@ -36,7 +39,7 @@ class Output:
 
     def launch_line(self, level: str, logger: str, message: str, *, screen: bool = True) -> None:
         """``[LEVEL] [logger]: message`` to the screen (unless not ``screen``) and launch.log."""
-        text = f"[{level}] [{logger}]: {message}"
+        text = printable(f"[{level}] [{logger}]: {message}")
         if self._logs is not None:
             self._logs.write(_LAUNCH_LOG, [text], child=False)
         if not screen:
@@ -52,6 +55,7 @@ class Output:
         to_screen = mode in ("screen", "both", "full") or (mode == "log" and stream == "stderr")
         to_log = mode in ("log", "both", "full")
         to_own = mode in ("own_log", "full")
+        label = printable(label)  # the child's lines are its own; launchkit's prefix is not
         if to_screen:
             if self.colour:
                 prefix = f"{_NAME_COLOURS[index % len(_NAME_COLOURS)]}[{label}]{_RESET} "

@@ -9,6 +9,7 @@ from dataclasses import dataclass, field
 from typing import TYPE_CHECKING
 
 from launchkit.description.process_spec import ProcessSpec
+from launchkit.errors import printable
 
 if TYPE_CHECKING:
     from launchkit.description.launch_context import (
@@ -135,41 +136,44 @@ def count(items: list[Recorded]) -> tuple[int, int]:
 def render(items: list[Recorded], indent: str = "") -> str:
     """The recorded launch as readable text."""
     lines: list[str] = []
+
+    def add(line: str) -> None:  # what a file wrote, escaped: it cannot forge a line
+        lines.append(printable(line))
+
     for item in items:
         if item.kind == "process" and item.spec is not None:
             spec = item.spec
             kind = "node" if spec.is_node else "process"
-            lines.append(
-                f"{indent}{kind} {spec.name}" + (f"  ({spec.location})" if spec.location else "")
-            )
+            add(f"{indent}{kind} {spec.name}" + (f"  ({spec.location})" if spec.location else ""))
             if spec.machine:
-                lines.append(f"{indent}  machine: {spec.machine} (run by its launchkit agent)")
-            lines.append(f"{indent}  cmd: {shlex.join(spec.cmd)}")
-            lines.append(f"{indent}  cwd: {spec.cwd or '(launch directory)'}")
-            lines.append(f"{indent}  output: {spec.output}")
+                add(f"{indent}  machine: {spec.machine} (run by its launchkit agent)")
+            add(f"{indent}  cmd: {shlex.join(spec.cmd)}")
+            add(f"{indent}  cwd: {spec.cwd or '(launch directory)'}")
+            add(f"{indent}  output: {spec.output}")
             for name, value in sorted(spec.env_changes.items()):
                 change = "(unset)" if value is None else value
-                lines.append(f"{indent}  env: {name}={change}")
+                add(f"{indent}  env: {name}={change}")
             if spec.respawn:
                 retries = (
                     "forever"
                     if spec.respawn_max_retries < 0
                     else f"{spec.respawn_max_retries} times"
                 )
-                lines.append(f"{indent}  respawn: after {spec.respawn_delay:g} s, {retries}")
+                add(f"{indent}  respawn: after {spec.respawn_delay:g} s, {retries}")
             if spec.on_exit_shutdown:
-                lines.append(f"{indent}  on_exit: shutdown")
+                add(f"{indent}  on_exit: shutdown")
             for path, text in spec.files.items():
-                lines.append(f"{indent}  file {path}:")
-                lines.extend(f"{indent}    {line}" for line in text.splitlines())
+                add(f"{indent}  file {path}:")
+                for line in text.splitlines():
+                    add(f"{indent}    {line}")
         elif item.kind == "timer":
-            lines.append(f"{indent}timer after {item.delay:g} s:")
+            add(f"{indent}timer after {item.delay:g} s:")
             lines.append(render(item.inner, indent + "  ") or f"{indent}  (nothing)")
         elif item.kind == "handler":
-            lines.append(f"{indent}event handler {item.text}:")
+            add(f"{indent}event handler {item.text}:")
             lines.append(render(item.inner, indent + "  ") or f"{indent}  (a Python function)")
         elif item.kind == "shutdown":
-            lines.append(f"{indent}shutdown: {item.text}")
+            add(f"{indent}shutdown: {item.text}")
         else:
-            lines.append(f"{indent}{item.text}")
+            add(f"{indent}{item.text}")
     return "\n".join(line for line in lines if line)

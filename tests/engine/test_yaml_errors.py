@@ -9,9 +9,9 @@ from pathlib import Path
 import pytest
 import yaml
 
+from launchkit import safe_yaml as document
 from launchkit.errors import LaunchFileError
 from launchkit.frontend.launch_loader import LaunchLoader
-from launchkit.frontend.yaml import document
 from tests.engine.launcher import run_launchkit as launchkit
 
 #: Every file begins with this, so a process would leave a marker if anything started.

@@ -9,7 +9,8 @@ from typing import TYPE_CHECKING
 
 from launchkit.description.actions.base import Action
 from launchkit.description.substitutions.base import Value, perform
-from launchkit.errors import LaunchkitError, Location, RuntimeLaunchError
+from launchkit.errors import LaunchFileError, LaunchkitError, Location, RuntimeLaunchError
+from launchkit.packages import exists, is_file
 
 if TYPE_CHECKING:
     from launchkit.description.conditions import Condition
@@ -52,11 +53,11 @@ class Include(Action):
         the including file's directory."""
         text = perform(self.file, context)
         path = Path(text).expanduser()
-        if not path.is_absolute() and not path.exists() and context.current_file is not None:
+        if not path.is_absolute() and not exists(path) and context.current_file is not None:
             beside = context.current_file.parent / path
-            if beside.exists():
+            if exists(beside):
                 path = beside
-        if not path.is_file():
+        if not is_file(path):
             raise RuntimeLaunchError(
                 f"included launch file '{text}' does not exist",
                 self.location,
@@ -67,6 +68,14 @@ class Include(Action):
     def execute(self, context: LaunchContext) -> None:
         """Include the file in the current scope; an error inside it names this include."""
         path = self.resolve(context)
+        if path in context.open_files:
+            again = "itself" if path == context.current_file else f"'{path.name}' again"
+            raise LaunchFileError(
+                f"include cycle: '{context.current_file and context.current_file.name}' "
+                f"includes {again} while it is being included",
+                self.location or Location(str(path)),
+                expected="includes that never lead back to a file that includes them",
+            )
         try:
             description = context.loader(path, self.location, self.syntax)
         except LaunchkitError as error:

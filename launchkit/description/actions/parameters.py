@@ -9,6 +9,7 @@ from typing import TYPE_CHECKING, Any
 
 from launchkit.description.substitutions.base import Value, perform
 from launchkit.errors import Location, RuntimeLaunchError
+from launchkit.packages import is_file
 
 if TYPE_CHECKING:
     from launchkit.description.launch_context import LaunchContext
@@ -163,13 +164,19 @@ def params_file(entry: ParamFile, context: LaunchContext) -> Path:
     """The file a ``<param from=...>`` names (a copy with its substitutions performed when
     ``allow_substs``); an error when it does not exist."""
     path = Path(perform(entry.path, context))
-    if not path.is_file():
+    if not is_file(path):
         raise RuntimeLaunchError(
             f"parameter file '{path}' does not exist", entry.location, expected="a YAML file"
         )
+    from launchkit.safe_yaml import compose, read_text
+
+    text = read_text(path, entry.location)  # a located error for bytes that are not UTF-8
     if not entry.allow_substs:
+        compose(text, path)  # refused here, before anything starts, rather than by the node
         return path.resolve()
     from launchkit.description.substitutions.grammar import parse_value
 
-    text = perform(parse_value(path.read_text(), Location(str(path))), context)
-    return context.write_scratch_file("params_", ".yaml", text)
+    text = perform(parse_value(text, Location(str(path))), context)
+    scratch = context.write_scratch_file("params_", ".yaml", text)
+    compose(text, path)  # errors name the user's file (lines as substituted)
+    return scratch

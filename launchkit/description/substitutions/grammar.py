@@ -13,13 +13,28 @@ The grammar is ROS 2 launch's (``launch/frontend/grammar.lark``):
 
 from __future__ import annotations
 
+import re
+
 from launchkit.description.substitutions import SUBSTITUTIONS
 from launchkit.description.substitutions.base import Substitution, Text, Value
 from launchkit.errors import LaunchFileError, Location
 
+#: How deep ``$(...)`` may nest in one value (real files nest two or three levels).
+MAX_DEPTH = 64
+
+
+#: The characters that end a run of literal text at the top, in an unquoted argument, in a
+#: quoted one: the parser jumps over everything else in one step (a large file's values are
+#: mostly literal text).
+_TOP_SPECIAL = re.compile(r"[\\$]")
+_ARGUMENT_SPECIAL = re.compile(r"[ )\\$'\"(]")
+_QUOTED_SPECIAL = {"'": re.compile(r"['\\$]"), '"': re.compile(r'["\\$]')}
+
 
 def parse_value(text: str, location: Location | None = None) -> Value:
     """Parse ``text`` into literal text and substitutions; ``location`` is where it starts."""
+    if "$" not in text and "\\" not in text:
+        return (Text(text),) if text else ()
     return _Parser(text, location).parse_top()
 
 
@@ -30,6 +45,7 @@ class _Parser:
         self.text = text
         self.pos = 0
         self.location = location
+        self.depth = 0  # the ``$(`` open around the position
 
     # -- helpers -----------------------------------------------------------------------------
 
@@ -44,12 +60,23 @@ class _Parser:
     def at_call(self) -> bool:
         return self.peek() == "$" and self.peek(1) == "("
 
+    def skip_literal(self, special: re.Pattern[str], buffer: list[str]) -> None:
+        """Move over literal text up to the next ``special`` character, into ``buffer``."""
+        match = special.search(self.text, self.pos)
+        end = match.start() if match else len(self.text)
+        if end > self.pos:
+            buffer.append(self.text[self.pos : end])
+            self.pos = end
+
     # -- grammar -----------------------------------------------------------------------------
 
     def parse_top(self) -> Value:
         parts: list[Substitution] = []
         buffer: list[str] = []
-        while self.pos < len(self.text):
+        while True:
+            self.skip_literal(_TOP_SPECIAL, buffer)
+            if self.pos >= len(self.text):
+                break
             char = self.peek()
             if char == "\\" and self.pos + 1 < len(self.text):
                 buffer.append(self.text[self.pos + 1])
@@ -64,6 +91,17 @@ class _Parser:
         return tuple(parts)
 
     def parse_call(self) -> Substitution:
+        self.depth += 1
+        if self.depth > MAX_DEPTH:
+            raise self.error(
+                f"substitutions nested deeper than {MAX_DEPTH}",
+                f"at most {MAX_DEPTH} levels of $(...) inside one another",
+            )
+        call = self._call()
+        self.depth -= 1
+        return call
+
+    def _call(self) -> Substitution:
         start = self.pos
         self.pos += 2  # "$("
         name_start = self.pos
@@ -107,6 +145,7 @@ class _Parser:
         parts: list[Substitution] = []
         buffer: list[str] = []
         while True:
+            self.skip_literal(_ARGUMENT_SPECIAL, buffer)
             char = self.peek()
             if char in (" ", ")", ""):
                 break
@@ -135,7 +174,9 @@ class _Parser:
         self.pos += 1
         parts: list[Substitution] = []
         buffer: list[str] = []
+        special = _QUOTED_SPECIAL[quote]
         while True:
+            self.skip_literal(special, buffer)
             char = self.peek()
             if char == "":
                 raise self.error(

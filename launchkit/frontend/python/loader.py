@@ -29,11 +29,24 @@ def load_python_launch(path: Path, included_from: Location | None = None) -> Lau
             result = generate()
         except LaunchkitError:
             raise
+        except SyntaxError as error:  # the user's file, or a module it imports
+            raise LaunchFileError(
+                f"invalid Python: {error.msg}",
+                Location(error.filename or str(path), error.lineno or 0, error.offset or 0),
+                expected="a Python launch file",
+            ) from None
         except ImportError as error:
             raise LaunchFileError(
                 f"'{path.name}' imports {error.name or error}, which launchkit does not provide",
                 error_location(error) or where,
                 expected="launch, launch_ros, ament_index_python and installed Python modules",
+            ) from None
+        except SystemExit as error:  # sys.exit() in a launch file must not end launchkit
+            raise LaunchFileError(
+                f"'{path.name}' called sys.exit({error.code!r}) while building its launch "
+                "description",
+                error_location(error) or where,
+                expected="generate_launch_description() returning a LaunchDescription",
             ) from None
         except Exception as error:
             raise LaunchFileError(

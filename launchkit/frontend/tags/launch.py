@@ -25,7 +25,7 @@ from launchkit.description.actions import (
 )
 from launchkit.description.actions.log import LEVELS
 from launchkit.description.process_spec import OUTPUT_MODES
-from launchkit.description.substitutions.base import Text
+from launchkit.description.substitutions.base import Text, Value
 
 if TYPE_CHECKING:
     from launchkit.description.actions.base import Action
@@ -126,19 +126,24 @@ def parse_process_options(entity: Entity) -> ProcessOptions:
         if child.tag == "env":
             env.append((child.required("name"), child.required("value")))
             leaf(child).assert_fully_read()
+    given = set(entity.attribute_names())  # most are absent: not read one by one (large files)
+
+    def checked(name: str, check: str, typed: bool = True) -> Value | None:
+        return entity.checked(name, check, typed=typed) if name in given else None
+
     return ProcessOptions(
-        cwd=entity.value("cwd"),
-        name=entity.value("name"),
-        launch_prefix=entity.value("launch-prefix"),
-        output=entity.choice("output", OUTPUT_MODES),
-        shell=entity.checked("shell", "bool"),
-        emulate_tty=entity.checked("emulate_tty", "bool"),
-        sigterm_timeout=entity.checked("sigterm_timeout", "ufloat"),
-        sigkill_timeout=entity.checked("sigkill_timeout", "ufloat"),
-        respawn=entity.checked("respawn", "bool", typed=False),
-        respawn_delay=entity.checked("respawn_delay", "ufloat"),
-        respawn_max_retries=entity.checked("respawn_max_retries", "int"),
-        on_exit=entity.choice("on_exit", ("shutdown",)),
+        cwd=entity.value("cwd") if "cwd" in given else None,
+        name=entity.value("name") if "name" in given else None,
+        launch_prefix=entity.value("launch-prefix") if "launch-prefix" in given else None,
+        output=entity.choice("output", OUTPUT_MODES) if "output" in given else None,
+        shell=checked("shell", "bool"),
+        emulate_tty=checked("emulate_tty", "bool"),
+        sigterm_timeout=checked("sigterm_timeout", "ufloat"),
+        sigkill_timeout=checked("sigkill_timeout", "ufloat"),
+        respawn=checked("respawn", "bool", typed=False),
+        respawn_delay=checked("respawn_delay", "ufloat"),
+        respawn_max_retries=checked("respawn_max_retries", "int"),
+        on_exit=entity.choice("on_exit", ("shutdown",)) if "on_exit" in given else None,
         env=env,
     )
 

@@ -3,6 +3,8 @@ written at (lxml gives the line; the column is found in the source text)."""
 
 from __future__ import annotations
 
+import bisect
+import functools
 import re
 from dataclasses import dataclass, field
 from pathlib import Path
@@ -11,6 +13,12 @@ from lxml import etree
 
 from launchkit.errors import Location
 from launchkit.frontend.base_entity import Entity
+
+
+@functools.lru_cache(maxsize=256)
+def _attribute_pattern(name: str) -> re.Pattern[str]:
+    """Finds ``NAME = "`` in a start tag."""
+    return re.compile(r"\s" + re.escape(name) + r"\s*=\s*([\"'])")
 
 
 @dataclass
@@ -30,14 +38,7 @@ class SourceFile:
 
     def position(self, offset: int) -> tuple[int, int]:
         """1-based (line, column) of a character offset."""
-        line = 0
-        low, high = 0, len(self._line_starts) - 1
-        while low <= high:
-            mid = (low + high) // 2
-            if self._line_starts[mid] <= offset:
-                line, low = mid, mid + 1
-            else:
-                high = mid - 1
+        line = max(bisect.bisect_right(self._line_starts, offset) - 1, 0)
         return line + 1, offset - self._line_starts[line] + 1
 
     def location(self, offset: int) -> Location:
@@ -54,33 +55,42 @@ class XmlEntity(Entity):
         self.element = element
         self.source = source
         self._start = self._find_start()
+        self._location: Location | None = None
 
     def _find_start(self) -> int:
         sourceline: int | None = self.element.sourceline  # type: ignore[assignment]
         line = sourceline or 1
         # lxml reports the line where the start tag ends; search back a little for "<tag".
+        text = self.source.text
         search_from = self.source.offset(max(1, line - 20))
-        search_to = self.source.offset(line + 1) if line < len(self.source._line_starts) else None
-        window = self.source.text[search_from:search_to]
-        matches = list(re.finditer(r"<" + re.escape(self.tag) + r"(?=[\s/>])", window))
-        return search_from + matches[-1].start() if matches else self.source.offset(line)
+        end = self.source.offset(line + 1) if line < len(self.source._line_starts) else len(text)
+        opening = "<" + self.tag
+        while True:
+            found = text.rfind(opening, search_from, end)
+            if found < 0:
+                return self.source.offset(line)
+            following = text[found + len(opening) : found + len(opening) + 1]
+            if following.isspace() or following in ("/", ">"):
+                return found
+            end = found
 
     @property
     def location(self) -> Location:
         """Where the element's start tag begins."""
-        return self.source.location(self._start)
+        if self._location is None:
+            self._location = self.source.location(self._start)
+        return self._location
 
     def attribute_location(self, name: str) -> Location:
         """Where attribute ``name``'s value begins (after the quote)."""
-        pattern = re.compile(r"\s" + re.escape(name) + r"\s*=\s*([\"'])")
-        match = pattern.search(self.source.text, self._start)
+        match = _attribute_pattern(name).search(self.source.text, self._start)
         if match is None:
             return self.location
         return self.source.location(match.end())
 
     def attribute_names(self) -> list[str]:
         """The element's attribute names."""
-        return [n if isinstance(n, str) else n.decode() for n in self.element.attrib]
+        return [n if isinstance(n, str) else n.decode() for n in self.element.keys()]
 
     def attribute_text(self, name: str) -> str | None:
         """The attribute's text as lxml read it (entities and character references resolved)."""
@@ -89,6 +99,8 @@ class XmlEntity(Entity):
 
     def children(self) -> list[Entity]:
         """Child elements (comments and processing instructions skipped)."""
+        if len(self.element) == 0:  # most elements: no lxml iteration
+            return []
         return [
             XmlEntity(child, self.source) for child in self.element if isinstance(child.tag, str)
         ]

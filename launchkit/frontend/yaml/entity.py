@@ -21,9 +21,9 @@ from collections.abc import Sequence
 from launchkit.description.substitutions.base import Value
 from launchkit.errors import LaunchFileError, Location
 from launchkit.frontend.base_entity import Entity
-from launchkit.frontend.yaml.document import Node
 from launchkit.frontend.yaml.param_value import param_value
 from launchkit.frontend.yaml.scalars import describe, node_text
+from launchkit.safe_yaml import Node
 
 _NATIVE_TYPES: dict[str, tuple[type, ...]] = {"bool": (bool,), "float": (float,), "int": (int,)}
 _EXPECTED = {

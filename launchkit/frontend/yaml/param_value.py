@@ -19,8 +19,8 @@ from __future__ import annotations
 from launchkit.description.substitutions.base import Substitution, Text, Value, literal
 from launchkit.description.substitutions.grammar import parse_value
 from launchkit.errors import LaunchFileError
-from launchkit.frontend.yaml.document import Node
 from launchkit.frontend.yaml.scalars import describe, node_text, quoted
+from launchkit.safe_yaml import Node
 
 _SCALAR_TYPES: dict[str, type] = {"str": str, "bool": bool, "int": int, "float": float}
 _LIST_TYPES: dict[str, type] = {f"list_of_{name}": kind for name, kind in _SCALAR_TYPES.items()}

@@ -11,9 +11,9 @@ from pathlib import Path
 from launchkit.description.launch_description import LaunchDescription
 from launchkit.errors import LaunchFileError, Location
 from launchkit.frontend.action_parser import ActionParser
-from launchkit.frontend.yaml.document import compose, read_text
 from launchkit.frontend.yaml.entity import YamlEntity
 from launchkit.frontend.yaml.scalars import describe
+from launchkit.safe_yaml import compose, read_text
 
 
 class YamlParser:

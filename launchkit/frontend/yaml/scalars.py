@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import math
 
-from launchkit.frontend.yaml.document import Node
+from launchkit.safe_yaml import Node
 
 
 def describe(node: Node) -> str:

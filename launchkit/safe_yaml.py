@@ -12,6 +12,7 @@ about; the text must be UTF-8.
 
 from __future__ import annotations
 
+import stat
 from collections.abc import Sequence
 from pathlib import Path
 from typing import Any
@@ -22,8 +23,13 @@ from launchkit.errors import LaunchFileError, Location
 
 #: The deepest nesting of mappings and lists accepted (launch files use about ten levels).
 MAX_DEPTH = 100
+#: The largest YAML file read (launch files and params files are kilobytes).
+MAX_FILE_SIZE = 256 * 1024 * 1024
 #: How many nodes all aliases of a file may add together, once expanded.
 MAX_ALIAS_NODES = 100_000
+#: The longest scalar read as anything but text: a longer number costs quadratic time (YAML
+#: 1.1's base-60 integers such as ``1:0:0:...``) or is refused by ``int()`` past 4300 digits.
+MAX_NUMBER_LENGTH = 1000
 
 _Loader: type[yaml.SafeLoader] = getattr(yaml, "CSafeLoader", yaml.SafeLoader)
 _MERGE_TAG = "tag:yaml.org,2002:merge"
@@ -91,10 +97,20 @@ class Node:
 
 def read_text(path: Path, included_from: Location | None) -> str:
     """The file's text; bytes that are not UTF-8 are an error at their line and column."""
+    where = included_from or Location(str(path))
     try:
+        status = path.stat()
+        if not stat.S_ISREG(status.st_mode):  # /dev/zero or a FIFO would never end
+            raise LaunchFileError("not a regular file", where, expected="a YAML file")
+        if status.st_size > MAX_FILE_SIZE:
+            raise LaunchFileError(
+                f"the file is {status.st_size} bytes long",
+                where,
+                expected=f"a YAML file of at most {MAX_FILE_SIZE} bytes",
+            )
         data = path.read_bytes()
     except OSError as error:
-        raise LaunchFileError(f"cannot read '{path}': {error.strerror}", included_from) from None
+        raise LaunchFileError(f"cannot read '{path}': {error.strerror}", where) from None
     try:
         return data.decode("utf-8-sig")
     except UnicodeDecodeError as error:
@@ -216,13 +232,19 @@ class _Composer:
                 if plain
                 else _STR_TAG
             )
+        if tag not in (_STR_TAG, _MERGE_TAG) and len(event.value) > MAX_NUMBER_LENGTH:
+            raise LaunchFileError(
+                f"an unquoted {tag.rsplit(':', 1)[-1]} of {len(event.value)} characters",
+                self.where(event.start_mark),
+                expected=f"at most {MAX_NUMBER_LENGTH} characters, or quotes to make it text",
+            )
         try:
             if tag in (_STR_TAG, _MERGE_TAG):
                 value = event.value
             else:
                 scalar = yaml.ScalarNode(tag, event.value, style=event.style)
                 value = self.loader.construct_object(scalar)
-        except yaml.constructor.ConstructorError:
+        except (yaml.constructor.ConstructorError, ValueError, OverflowError):
             raise LaunchFileError(
                 f"YAML tag {tag!r} is not supported",
                 self.where(event.start_mark),
@@ -266,3 +288,42 @@ class _Composer:
                 hint="aliases of aliases multiply (a 'billion laughs' document)",
             )
         return target
+
+
+def load_file(path: Path, included_from: Location | None = None) -> Any:
+    """The plain Python value of the YAML file ``path``, as ``yaml.safe_load`` gives it, read
+    within this module's bounds (None for an empty file); ``included_from`` locates an error in
+    opening it. Every failure is a :class:`LaunchFileError` at its file and line."""
+    root = compose(read_text(path, included_from), path)
+    return None if root is None else plain(root)
+
+
+def plain(node: Node) -> Any:
+    """A node as plain Python values (dicts, lists, scalars); ``<<`` merges as PyYAML does.
+    Recursion is bounded by :data:`MAX_DEPTH`, work by :data:`MAX_ALIAS_NODES`."""
+    if node.kind == "scalar":
+        return node.value
+    if node.kind == "seq":
+        return [plain(item) for item in node.items]
+    explicit: dict[Any, Any] = {}
+    merged: dict[Any, Any] = {}
+    for key, value in node.pairs:
+        if key.is_merge_key:
+            for source in value.items if value.kind == "seq" else [value]:
+                if source.kind != "map":
+                    raise LaunchFileError(
+                        "a '<<' merge of something that is not a mapping",
+                        source.location,
+                        expected="'<<: *anchor' naming a mapping, or a list of them",
+                    )
+                for name, item in plain(source).items():
+                    merged.setdefault(name, item)
+            continue
+        if key.kind != "scalar":
+            raise LaunchFileError(
+                f"a {'list' if key.kind == 'seq' else 'mapping'} used as a mapping key",
+                key.location,
+                expected="a text or number key",
+            )
+        explicit[key.value] = plain(value)
+    return {**merged, **explicit}

@@ -1,0 +1,42 @@
+"""The fuzzing harness (issue #17, point 1): generated and mutated XML, YAML and Python launch
+files and params files come to success or one located launchkit error, never another
+exception, never a hang (see harness.py). Bounded under CI by the ``ci`` profile (conftest.py);
+``LAUNCHKIT_FUZZ_PROFILE=fuzz`` searches for long. What it finds goes to tests/hostile."""
+
+from __future__ import annotations
+
+from hypothesis import given
+from hypothesis import strategies as st
+
+from tests.fuzz import strategies as S
+from tests.fuzz.harness import check_file, load_params
+
+XML_SEEDS = S.seeds("launch_xml/*.xml", "tests/hostile/corpus/*.launch.xml")
+YAML_SEEDS = S.seeds("tests/corpus/yaml/*.yaml", "tests/hostile/corpus/*.launch.yaml")
+PYTHON_SEEDS = S.seeds("tests/corpus/python/demos_*.launch.py", "tests/hostile/corpus/*.py")
+PARAMS_SEEDS = S.seeds("tests/corpus/yaml/config/*.yaml", "tests/hostile/corpus/params_*.yaml")
+
+
+@given(S.xml_launch_file())
+def test_generated_xml_launch_files(data: bytes) -> None:
+    check_file("fuzz.launch.xml", data)
+
+
+@given(S.mutant_of(XML_SEEDS))
+def test_mutated_xml_launch_files(data: bytes) -> None:
+    check_file("fuzz.launch.xml", data)
+
+
+@given(st.one_of(S.yaml_launch_file(), S.mutant_of(YAML_SEEDS)))
+def test_yaml_launch_files(data: bytes) -> None:
+    check_file("fuzz.launch.yaml", data)
+
+
+@given(S.mutant_of(PYTHON_SEEDS))
+def test_mutated_python_launch_files(data: bytes) -> None:
+    check_file("fuzz.launch.py", data)
+
+
+@given(st.one_of(S.params_file(), S.mutant_of(PARAMS_SEEDS)))
+def test_params_files(data: bytes) -> None:
+    load_params(data)

@@ -1,0 +1,4 @@
+from launch import LaunchDescription
+
+settings = {}
+value = settings["missing"]

@@ -1,0 +1,5 @@
+from launch import LaunchDescription
+
+
+def generate_launch_description(:
+    return LaunchDescription([])
