@@ -1,6 +1,7 @@
 """Issue 15's table in one run: each place a user waits, beside its floor (run by hand).
 
     python bench/user_waits.py [--runs 5] [--bringups 3] [--camera-seconds 10]
+                               [--only PART] [--before DIR]
 
 Every row is the median of interleaved runs (the command and its floor alternate, so a load
 change on this shared machine hits both), and is printed with its ratio and the issue's target:
@@ -17,6 +18,12 @@ change on this shared machine hits both), and is printed with its ratio and the 
     ``start_rviz:=false`` so runs do not fight over the viewer's port) to the first /odom;
   * the seed camera (800x800 at 30 Hz, paced at real time) subscribed: frames per wall second,
     TinyRenderer and EGL (bench/bringup.py's camera case).
+
+``--before DIR`` (a folder holding an older ``launchkit`` package, e.g. from ``git archive``)
+adds that tree's ``launchkit run`` of the empty file and ``topic echo /odom --once`` to the same
+interleaved rounds, so before and after share the machine's load. Commands run from the
+temporary folder: ``python -m`` puts the current folder first on ``sys.path``, which from the
+repository would shadow ``--before``'s tree with this one.
 
 Bytecode is written and used (PYTHONDONTWRITEBYTECODE is dropped for the children), as after
 ``pip install``. Each row says the machine's load average when it was measured.
@@ -54,11 +61,28 @@ POPEN_LOOP = (
 TALKER = Path(__file__).resolve().parents[1] / "tests" / "ros" / "nodes" / "talker.py"
 
 
+#: The environment that runs ``--before``'s launchkit instead of this one (None: no such tree).
+BEFORE: dict[str, str] | None = None
+
+
 def wall(argv: list[str], env: dict[str, str]) -> float:
     """Seconds from spawning ``argv`` to its exit (output discarded; a failure is fatal)."""
     start = time.perf_counter()
-    subprocess.run(argv, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL, env=env, check=True)
+    subprocess.run(
+        argv,
+        stdout=subprocess.DEVNULL,
+        stderr=subprocess.DEVNULL,
+        env=env,
+        check=True,
+        cwd=tempfile.gettempdir(),
+    )
     return time.perf_counter() - start
+
+
+def before(env: dict[str, str]) -> dict[str, str]:
+    """``env`` running ``--before``'s launchkit."""
+    assert BEFORE is not None
+    return {**env, **BEFORE}
 
 
 def interleaved(cases: dict[str, Callable[[], float]], runs: int) -> dict[str, float]:
@@ -98,14 +122,24 @@ def startup_rows(runs: int) -> None:
         empty.write_text("<launch/>\n")
         hundred = Path(tmp) / "n100.launch.xml"
         hundred.write_text("<launch>\n" + '<executable cmd="echo hi"/>\n' * 100 + "</launch>\n")
-        m = interleaved(
-            {
-                "pass": lambda: wall([PY, "-c", "pass"], env),
-                "empty": lambda: wall([*LAUNCHKIT, "run", str(empty)], env),
-                "loop": lambda: wall([PY, "-c", POPEN_LOOP], env),
-                "hundred": lambda: wall([*LAUNCHKIT, "run", str(hundred)], env),
-            },
-            runs,
+        cases: dict[str, Callable[[], float]] = {
+            "pass": lambda: wall([PY, "-c", "pass"], env),
+            "empty": lambda: wall([*LAUNCHKIT, "run", str(empty)], env),
+            "loop": lambda: wall([PY, "-c", POPEN_LOOP], env),
+            "hundred": lambda: wall([*LAUNCHKIT, "run", str(hundred)], env),
+        }
+        if BEFORE is not None:
+            cases["empty_before"] = lambda: wall([*LAUNCHKIT, "run", str(empty)], before(env))
+        m = interleaved(cases, runs)
+    if BEFORE is not None:
+        ratio = m["empty_before"] / m["pass"]
+        row(
+            "  --before: launchkit run, empty file",
+            f"{m['empty_before'] * 1000:.0f} ms",
+            f"python -c pass {m['pass'] * 1000:.0f} ms",
+            f"{ratio:.2f}x",
+            "<= 2.5x",
+            ratio <= 2.5,
         )
     ratio = m["empty"] / m["pass"]
     row(
@@ -135,8 +169,11 @@ def cli_rows(runs: int, endpoint: str, label: str, echo: bool) -> None:
         "topic": lambda: wall([*LAUNCHKIT, "topic", "list"], env),
         "node": lambda: wall([*LAUNCHKIT, "node", "list"], env),
     }
+    echo_argv = [*LAUNCHKIT, "topic", "echo", "/odom", "--once"]
     if echo:
-        cases["echo"] = lambda: wall([*LAUNCHKIT, "topic", "echo", "/odom", "--once"], env)
+        cases["echo"] = lambda: wall(echo_argv, env)
+    if echo and BEFORE is not None:
+        cases["echo_before"] = lambda: wall(echo_argv, before(env))
     m = interleaved(cases, runs)
     floor = f"import zenoh {m['zenoh'] * 1000:.0f} ms"
     for key, what in (("topic", "topic list"), ("node", "node list")):
@@ -156,6 +193,15 @@ def cli_rows(runs: int, endpoint: str, label: str, echo: bool) -> None:
             "",
             "<= 0.4 s",
             m["echo"] <= 0.4,
+        )
+    if echo and BEFORE is not None:
+        row(
+            "  --before: topic echo /odom --once",
+            f"{m['echo_before']:.3f} s",
+            "one /odom period",
+            "",
+            "<= 0.4 s",
+            m["echo_before"] <= 0.4,
         )
 
 
@@ -221,12 +267,13 @@ def odom_period(bring: Any) -> float:
     return (stamps[20] - stamps[0]) / 20
 
 
-def bringup_rows(runs: int, bringups: int, camera_seconds: float) -> None:
-    """README line 1 to the first /odom; the CLI beside the robot; the camera's frame rate."""
+def bringup_rows(runs: int, bringups: int, camera_seconds: float, cli_only: bool = False) -> None:
+    """README line 1 to the first /odom; the CLI beside the robot; the camera's frame rate
+    (``cli_only``: one bring-up and the CLI beside it)."""
     from launchkit.ros.msgs.nav_msgs.msg import Odometry
 
     firsts = []
-    for attempt in range(bringups):
+    for attempt in range(1 if cli_only else bringups):
         bring = bringup.BringUp()
         try:
             firsts.append(bring.first(Odometry, "/odom")[1])
@@ -236,6 +283,8 @@ def bringup_rows(runs: int, bringups: int, camera_seconds: float) -> None:
                 cli_rows(runs, bring.router, "robot up", echo=True)
         finally:
             bring.stop()
+    if cli_only:
+        return
     first = statistics.median(firsts)
     row(
         "README line 1 to first /odom",
@@ -264,8 +313,16 @@ def main() -> None:
     parser.add_argument("--runs", type=int, default=5, help="interleaved rounds per command")
     parser.add_argument("--bringups", type=int, default=3, help="robot bring-ups per row")
     parser.add_argument("--camera-seconds", type=float, default=10.0)
-    parser.add_argument("--only", choices=["startup", "cli", "latency", "robot"])
+    parser.add_argument(
+        "--only",
+        choices=["startup", "cli", "latency", "robot", "robot-cli"],
+        help="one part (robot-cli: one bring-up and the CLI beside it)",
+    )
+    parser.add_argument("--before", type=Path, help="a folder with an older launchkit package")
     args = parser.parse_args()
+    if args.before is not None:
+        global BEFORE
+        BEFORE = {"PYTHONPATH": str(args.before.resolve())}
     print(
         f"# {platform.node()} {platform.machine()}, {os.cpu_count()} cores, Python "
         f"{platform.python_version()}, {datetime.now(timezone.utc):%Y-%m-%d %H:%M} UTC",
@@ -284,6 +341,8 @@ def main() -> None:
         latency_rows(3)
     if args.only in (None, "robot"):
         bringup_rows(args.runs, args.bringups, args.camera_seconds)
+    if args.only == "robot-cli":
+        bringup_rows(args.runs, args.bringups, args.camera_seconds, cli_only=True)
 
 
 if __name__ == "__main__":

@@ -1,14 +1,17 @@
 """Entities to actions, the same for every syntax: which parser reads which tag.
 
 An :class:`ActionParser` holds a table of tag parsers that the tag modules fill explicitly
-(``frontend/tags``: each has a ``register``), and does what every tag shares: ``if``/``unless``,
+(``frontend/tags``: each has a ``register``), or that it fills itself from a tag module named
+for the tag the first time a file uses that tag (:meth:`ActionParser.register_module`: an
+empty launch file imports no action classes), and does what every tag shares: ``if``/``unless``,
 the action's location, and the check that no attribute was left unread (an unknown attribute
 is an error, as in ROS).
 """
 
 from __future__ import annotations
 
-from collections.abc import Callable
+import importlib
+from collections.abc import Callable, Iterable
 
 from launchkit.description.actions.base import Action
 from launchkit.description.conditions import Condition
@@ -35,16 +38,37 @@ class ActionParser:
     def __init__(self) -> None:
         self._parsers: dict[str, TagParser] = {}
         self._depth = 0  # actions open around the one being parsed
+        self._modules: dict[str, str] = {}
+
+    def register_module(self, module: str, names: Iterable[str]) -> None:
+        """Read tags ``names`` with the parsers module ``module`` registers, importing it when
+        a file first uses one of them (its ``register`` must add exactly ``names``)."""
+        for name in names:
+            if name in self._parsers or name in self._modules:
+                raise ValueError(f"tag <{name}> registered twice")
+            self._modules[name] = module
+
+    def _load(self, tag: str) -> TagParser | None:
+        """The parser for ``tag``, importing the tag module that reads it on first use."""
+        parse = self._parsers.get(tag)
+        module = self._modules.get(tag) if parse is None else None
+        if module is None:
+            return parse
+        names = [name for name, where in self._modules.items() if where == module]
+        for name in names:
+            del self._modules[name]
+        importlib.import_module(module).register(self)
+        return self._parsers.get(tag)
 
     def register(self, name: str, parser: TagParser) -> None:
         """Have ``parser`` read tag ``name``; a tag registered twice is a programming error."""
-        if name in self._parsers:
+        if name in self._parsers or name in self._modules:
             raise ValueError(f"tag <{name}> registered twice")
         self._parsers[name] = parser
 
     def tags(self) -> list[str]:
         """Every tag name this parser reads, sorted."""
-        return sorted(self._parsers)
+        return sorted({*self._parsers, *self._modules})
 
     def parse_actions(self, parent: Entity, skip: tuple[str, ...] = ()) -> list[Action]:
         """The actions among ``parent``'s children (tags in ``skip`` are left to the parent)."""
@@ -52,7 +76,7 @@ class ActionParser:
 
     def parse_action(self, entity: Entity) -> Action:
         """One action tag, with its condition, fully checked."""
-        parse = self._parsers.get(entity.tag)
+        parse = self._load(entity.tag)
         if parse is None:
             raise entity.error(
                 f"unknown tag {entity.label()}",
