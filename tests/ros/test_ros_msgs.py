@@ -2,10 +2,6 @@
 
 from __future__ import annotations
 
-import json
-import subprocess
-import sys
-
 import numpy as np
 import pytest
 
@@ -84,51 +80,3 @@ def test_packages_import_like_rclpy() -> None:
     assert Clock().clock.sec == 0
     with pytest.raises(ImportError):
         __import__("launchkit.ros.msgs.nope_msgs.msg")
-
-
-def test_the_bundled_definitions_are_rosbags_jazzy_store() -> None:
-    # launchkit reads the Jazzy definitions from a file so that one type does not import every
-    # distribution's store; they must be rosbags' own, field for field and constant for constant
-    from pathlib import Path
-
-    from rosbags.typesys import Stores, get_typestore
-
-    import launchkit.ros.msgs._typestore as store
-
-    bundled = json.loads((Path(store.__file__).parent / store._DEFINITIONS).read_text())
-    jazzy = json.loads(json.dumps(get_typestore(Stores.ROS2_JAZZY).fielddefs))
-    assert bundled == jazzy
-
-
-def test_one_type_registers_only_what_it_contains() -> None:
-    # a fresh process: Odometry and the types inside it, not rosbags' stores of every ROS
-    # distribution; its hash and bytes are those of the whole Jazzy store (test above and
-    # test_known_type_hashes)
-    probe = (
-        "import json, sys\n"
-        "from launchkit.ros.msgs import get_message, serialize, type_hash\n"
-        "from launchkit.ros.msgs._typestore import typestore_for\n"
-        "odom = get_message('nav_msgs/msg/Odometry')()\n"
-        "assert serialize(odom)\n"
-        "print(type_hash('nav_msgs/msg/Odometry'))\n"
-        "print(json.dumps(sorted(typestore_for('nav_msgs/msg/Odometry').types)))\n"
-        "print([m for m in sys.modules if m.startswith('rosbags.typesys.stores.ros')])\n"
-    )
-    result = subprocess.run([sys.executable, "-c", probe], capture_output=True, text=True)
-    assert result.returncode == 0, result.stderr
-    hash_, types, stores = result.stdout.splitlines()
-    assert hash_ == "RIHS01_3cc97dc7fb7502f8714462c526d369e35b603cfc34d946e3f2eda2766dfec6e0"
-    assert json.loads(types) == [
-        "builtin_interfaces/msg/Duration",
-        "builtin_interfaces/msg/Time",
-        "geometry_msgs/msg/Point",
-        "geometry_msgs/msg/Pose",
-        "geometry_msgs/msg/PoseWithCovariance",
-        "geometry_msgs/msg/Quaternion",
-        "geometry_msgs/msg/Twist",
-        "geometry_msgs/msg/TwistWithCovariance",
-        "geometry_msgs/msg/Vector3",
-        "nav_msgs/msg/Odometry",
-        "std_msgs/msg/Header",
-    ]
-    assert stores == "[]"

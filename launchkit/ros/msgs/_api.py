@@ -8,7 +8,7 @@ from typing import Any
 from launchkit.errors import UserError
 from launchkit.ros.msgs._codec import codec
 from launchkit.ros.msgs._srv_defs import SERVICES
-from launchkit.ros.msgs._typestore import message_names, typestore, typestore_for
+from launchkit.ros.msgs._typestore import typestore, typestore_for
 
 
 class MessageTypeError(UserError):
@@ -43,9 +43,9 @@ def normalize_type_name(name: str, kind: str = "msg") -> str:
 
 def type_names(kind: str = "msg") -> list[str]:
     """Every known type name of a kind (``msg`` or ``srv``), sorted."""
+    names = list(typestore(services=kind != "msg").types)  # a copy: services may be added
     if kind == "msg":
-        return message_names()
-    names = list(typestore().types)  # a copy: services may be added
+        return sorted(n for n in names if "/msg/" in n)
     return sorted(n for n in names if "/srv/" in n and not n.endswith(_SRV_PARTS))
 
 
@@ -54,7 +54,7 @@ _SRV_PARTS = ("_Request", "_Response", "_Event")
 
 def packages() -> set[str]:
     """Names of the packages that have message or service types."""
-    names = [*message_names(), *SERVICES]  # without registering them
+    names = [*typestore(services=False).types, *SERVICES]  # without registering the services
     return {name.split("/", 1)[0] for name in names}
 
 

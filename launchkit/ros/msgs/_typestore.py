@@ -1,11 +1,5 @@
 """The typestore: rosbags' ROS 2 Jazzy messages, launchkit's services, rclpy-style defaults.
 
-The message definitions are rosbags' Jazzy store's, read from ``jazzy_messages.json`` (written
-from ``get_typestore(Stores.ROS2_JAZZY).fielddefs``; tests/ros/test_msgs.py checks they are the
-same): importing rosbags' Jazzy store imports every older distribution's store and creates
-~300 dataclasses, while ``launchkit topic echo`` needs a handful. A type is registered, with the
-types it contains, when first asked for (:func:`typestore_for`); :func:`typestore` registers all.
-
 rosbags generates plain dataclasses whose fields are all required and whose numeric arrays must be
 numpy arrays. ``_make_rclpy_like`` patches each class so that ``Twist()`` works, every field has
 rclpy's default, and lists assigned to numeric array fields become numpy arrays.
@@ -14,10 +8,8 @@ rclpy's default, and lists assigned to numeric array fields become numpy arrays.
 from __future__ import annotations
 
 import functools
-import json
 import threading
 from collections.abc import Callable
-from pathlib import Path
 from typing import Any
 
 import numpy as np
@@ -50,11 +42,8 @@ _MSG_DEFAULTS: dict[str, dict[str, Any]] = {
     "sensor_msgs/msg/NavSatStatus": {"status": -2},
 }
 
-_DEFINITIONS = "jazzy_messages.json"
-
 _lock = threading.Lock()
 _store: Typestore | None = None
-_definitions: dict[str, Any] | None = None  # the Jazzy messages, name -> (consts, fields)
 _registered: set[str] = set()  # the services of SERVICES registered so far
 _SERVICE_PARTS = ("_Request", "_Response", "_Event")
 
@@ -64,16 +53,9 @@ def typestore(services: bool = True) -> Typestore:
     of launchkit's (what listing them needs). For one type, :func:`typestore_for`."""
     with _lock:
         store = _built()
-        _register_messages(store, list(_jazzy()))
         if services:
             _register_services(store, [name for name in SERVICES if name not in _registered])
         return store
-
-
-def message_names() -> list[str]:
-    """Every Jazzy message type name, and any registered since (without registering them)."""
-    with _lock:
-        return sorted({*_jazzy(), *(n for n in _built().types if "/msg/" in n)})
 
 
 def typestore_for(type_name: str) -> Typestore:
@@ -92,8 +74,6 @@ def typestore_for(type_name: str) -> Typestore:
                 name = name.removesuffix(part)
             if name in SERVICES and name not in _registered:
                 _register_services(store, [name])
-        elif type_name not in store.types and type_name in _jazzy():
-            _register_messages(store, [type_name])
         return store
 
 
@@ -105,77 +85,11 @@ def _built() -> Typestore:
 
 
 def _build() -> Typestore:
-    ts = get_typestore(Stores.EMPTY)  # it has builtin_interfaces' Time and Duration
+    ts = get_typestore(Stores.ROS2_JAZZY)
+    _chars_as_uint8(ts)
     for cls_name in list(ts.types):
         _make_rclpy_like(ts, cls_name)
     return ts
-
-
-def _jazzy() -> dict[str, Any]:
-    """The Jazzy message definitions (read once), with rosidl's ``char``."""
-    global _definitions
-    if _definitions is None:
-        text = (Path(__file__).parent / _DEFINITIONS).read_text(encoding="utf-8")
-        _definitions = {
-            name: (
-                [tuple(const) for const in consts],
-                [(fname, _char_as_uint8(_desc(desc))) for fname, desc in fields],
-            )
-            for name, (consts, fields) in json.loads(text).items()
-        }
-    return _definitions
-
-
-def _desc(desc: Any) -> Any:
-    """A field description from JSON (lists) back to rosbags' tuples."""
-    kind, detail = desc
-    if kind == _NAME:
-        return (kind, detail)
-    if kind == _BASE:
-        return (kind, tuple(detail))
-    return (kind, (_desc(detail[0]), detail[1]))
-
-
-def _char_as_uint8(desc: Any) -> Any:
-    # rosidl maps the .msg ``char`` to uint8; rosbags keeps "char", which changes the RIHS01 hash
-    # (service_msgs/ServiceEventInfo, hence every service hash). The CDR bytes are the same.
-    kind, detail = desc
-    if kind == _BASE and detail[0] == "char":
-        return (kind, ("uint8", detail[1]))
-    if kind in (_ARRAY, _SEQUENCE):
-        return (kind, (_char_as_uint8(detail[0]), detail[1]))
-    return desc
-
-
-def _register(ts: Typestore, types: dict[str, Any]) -> None:
-    """Register ``types`` and the Jazzy messages they contain that are not registered yet."""
-    types = {name: defs for name, defs in types.items() if name not in ts.fielddefs}
-    todo = list(types)
-    while todo:
-        for _, desc in types[todo.pop()][1]:
-            inner = _named(desc)
-            if inner is not None and inner not in ts.fielddefs and inner not in types:
-                types[inner] = _jazzy()[inner]
-                todo.append(inner)
-    if not types:
-        return
-    ts.register(types)  # at once: each register() generates and compiles code
-    for cls_name in types:
-        _make_rclpy_like(ts, cls_name)
-
-
-def _named(desc: Any) -> str | None:
-    """The type a field description refers to (directly or as elements), if any."""
-    kind, detail = desc
-    if kind == _NAME:
-        return str(detail)
-    if kind in (_ARRAY, _SEQUENCE):
-        return _named(detail[0])
-    return None
-
-
-def _register_messages(ts: Typestore, names: list[str]) -> None:
-    _register(ts, {name: _jazzy()[name] for name in names if name not in ts.fielddefs})
 
 
 def _register_services(ts: Typestore, names: list[str]) -> None:
@@ -184,8 +98,25 @@ def _register_services(ts: Typestore, names: list[str]) -> None:
     services: dict[str, Any] = {}
     for name in names:
         services.update(_service_types(name, SERVICES[name]))
-    _register(ts, services)
+    ts.register(services)  # at once: each register() generates and compiles code
+    for cls_name in services:
+        _make_rclpy_like(ts, cls_name)
     _registered.update(names)
+
+
+def _chars_as_uint8(ts: Typestore) -> None:
+    # rosidl maps the .msg ``char`` to uint8; rosbags keeps "char", which changes the RIHS01 hash
+    # (service_msgs/ServiceEventInfo, hence every service hash). The CDR bytes are the same.
+    def fix(desc: Any) -> Any:
+        kind, detail = desc
+        if kind == _BASE and detail[0] == "char":
+            return (kind, ("uint8", detail[1]))
+        if kind in (_ARRAY, _SEQUENCE):
+            return (kind, (fix(detail[0]), detail[1]))
+        return desc
+
+    for name, (consts, fields) in list(ts.fielddefs.items()):
+        ts.fielddefs[name] = (consts, [(fname, fix(desc)) for fname, desc in fields])
 
 
 def _service_types(name: str, text: str) -> dict[str, Any]:
