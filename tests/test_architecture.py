@@ -16,8 +16,8 @@ MAX_LINES = 400
 #: Modules that may import which launchkit modules (by prefix), besides their own package's.
 #: The most specific prefix rules; docs/architecture.md draws the same table.
 ALLOWED: dict[str, tuple[str, ...]] = {
-    "launchkit": ("launchkit.api", "launchkit.checks", "launchkit.errors", "launchkit.packages",
-                  "launchkit.runtime.hooks"),
+    "launchkit": ("launchkit._lazy", "launchkit.api", "launchkit.checks", "launchkit.errors",
+                  "launchkit.packages", "launchkit.runtime.hooks"),
     "launchkit.__main__": ("launchkit.cli",),
     "launchkit.cli": ("launchkit._argparse", "launchkit._exit", "launchkit.api",
                       "launchkit.bag.cli", "launchkit.bridge.cli", "launchkit.checks",
@@ -30,10 +30,12 @@ ALLOWED: dict[str, tuple[str, ...]] = {
                          "launchkit.packages"),
     "launchkit.frontend": ("launchkit.description", "launchkit.errors", "launchkit.packages",
                            "launchkit.safe_yaml"),
-    "launchkit.description": ("launchkit.errors", "launchkit.packages", "launchkit.safe_yaml"),
+    "launchkit.description": ("launchkit._lazy", "launchkit.errors", "launchkit.packages",
+                              "launchkit.safe_yaml"),
     "launchkit.runtime": ("launchkit.description", "launchkit.envvars", "launchkit.errors",
                           "launchkit.ros.federation", "launchkit.ros.router"),
-    "launchkit.ros": ("launchkit.envvars", "launchkit.errors", "launchkit.safe_yaml"),
+    "launchkit.ros": ("launchkit._lazy", "launchkit.envvars", "launchkit.errors",
+                      "launchkit.safe_yaml"),
     "launchkit.ros_adapter": ("launchkit.description", "launchkit.envvars", "launchkit.errors",
                               "launchkit.ros"),
     "launchkit.ros_cli": ("launchkit._argparse", "launchkit.envvars", "launchkit.errors",
@@ -55,6 +57,7 @@ ALLOWED: dict[str, tuple[str, ...]] = {
     "launchkit.errors": (),
     "launchkit._argparse": (),
     "launchkit._exit": (),
+    "launchkit._lazy": (),
     "launchkit.envvars": (),
 }  # fmt: skip
 

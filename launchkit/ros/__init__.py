@@ -18,8 +18,9 @@ Nodes connect to the Zenoh router at ``$LAUNCHKIT_ROUTER`` (default tcp/127.0.0.
 
 from __future__ import annotations
 
-import importlib
-from typing import TYPE_CHECKING, Any
+from typing import TYPE_CHECKING
+
+from launchkit._lazy import lazy_attributes
 
 if TYPE_CHECKING:
     from launchkit.ros.clock import Clock, ClockType, Duration, ROSClock, Time
@@ -93,15 +94,8 @@ _LAZY = {
 }
 
 
-def __getattr__(name: str) -> Any:
-    """The public names of the node API, imported when first asked for."""
-    target = _LAZY.get(name)
-    if target is None:
-        raise AttributeError(f"module 'launchkit.ros' has no attribute '{name}'")
-    module_name, _, attribute = target.partition(":")
-    value = getattr(importlib.import_module(module_name), attribute or name)
-    globals()[name] = value
-    return value
+# the public names of the node API, imported when first asked for
+__getattr__ = lazy_attributes(__name__, _LAZY, globals())
 
 
 if TYPE_CHECKING:

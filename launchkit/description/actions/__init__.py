@@ -2,8 +2,9 @@
 
 from __future__ import annotations
 
-import importlib
-from typing import TYPE_CHECKING, Any
+from typing import TYPE_CHECKING
+
+from launchkit._lazy import lazy_attributes
 
 if TYPE_CHECKING:
     from launchkit.description.actions.arg import DeclareArgument
@@ -64,14 +65,7 @@ _WHERE = {
 }
 
 
-def __getattr__(name: str) -> Any:
-    """Import the module defining ``name`` when it is first asked for."""
-    module = _WHERE.get(name)
-    if module is None:
-        raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
-    value = getattr(importlib.import_module(f"{__name__}.{module}"), name)
-    globals()[name] = value
-    return value
+__getattr__ = lazy_attributes(__name__, {n: f".{m}" for n, m in _WHERE.items()}, globals())
 
 
 __all__ = [

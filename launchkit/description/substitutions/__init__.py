@@ -7,10 +7,10 @@ module when the parser first meets it): a launch file without ``$(command)`` doe
 
 from __future__ import annotations
 
-import importlib
 from collections.abc import Iterator, Mapping
-from typing import TYPE_CHECKING, Any
+from typing import TYPE_CHECKING
 
+from launchkit._lazy import lazy_attributes
 from launchkit.description.substitutions.base import Call, Substitution, Text, Value, perform
 
 if TYPE_CHECKING:
@@ -69,14 +69,8 @@ _KINDS: dict[str, tuple[str, str]] = {
 _MODULE_OF = {cls: module for module, cls in _KINDS.values()}
 
 
-def __getattr__(name: str) -> Any:
-    """Import the module defining substitution class ``name`` when it is first asked for."""
-    module = _MODULE_OF.get(name)
-    if module is None:
-        raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
-    value = getattr(importlib.import_module(f"{__name__}.{module}"), name)
-    globals()[name] = value
-    return value
+# a substitution class is imported with its module when first asked for
+__getattr__ = lazy_attributes(__name__, {c: f".{m}" for c, m in _MODULE_OF.items()}, globals())
 
 
 class _Registry(Mapping[str, "type[Call]"]):
