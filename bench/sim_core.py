@@ -74,18 +74,15 @@ def frame_costs(frames: int, egl: bool) -> dict[str, float]:
 
     from launchkit.ros.msgs._codec import codec
     from launchkit.stock.gazebo_ros import messages
-    from launchkit.stock.gazebo_ros.sim.sensors import _pack
-    from launchkit.stock.rotations import rotate
 
     sim = Simulation(load_world(resolve_world("obstacles")), egl=egl)
     session = zenoh.open(zenoh.Config())
     try:
         entity = sim.spawn("robot", SEED.read_text(), (0, 0, 0.151, 0, 0, 0))
         camera = Camera(sim, entity, load_plugins(sim, entity, lambda _m: None).cameras[0][1])
-        c, p = camera.config, sim.p
+        c = camera.config
         publisher = session.declare_publisher("bench/camera")
         coder = codec("sensor_msgs/msg/Image")
-        renderer = p.ER_BULLET_HARDWARE_OPENGL if egl else p.ER_TINY_RENDERER
         steps: dict[str, list[float]] = {}
 
         @contextmanager
@@ -99,23 +96,11 @@ def frame_costs(frames: int, egl: bool) -> dict[str, float]:
             with timed("mirror state"):
                 sim.set_state(entity, (0.01 * i, 0.0, 0.151), (0.0, 0.0, 0.0, 1.0), joints)
             with timed("view matrix"):
-                position, orientation = sim.link_pose(entity, c.link)
-                ahead = rotate(orientation, (1.0, 0.0, 0.0))
-                target = tuple(a + b for a, b in zip(position, ahead, strict=False))
-                up = rotate(orientation, (0.0, 0.0, 1.0))
-                matrix = p.computeViewMatrix(position, target, up)
+                matrix = camera.view_matrix()
             with timed("render (getCameraImage)"):
-                rgba = p.getCameraImage(
-                    c.width,
-                    c.height,
-                    matrix,
-                    camera._projection,
-                    renderer=renderer,
-                    flags=p.ER_NO_SEGMENTATION_MASK,
-                    physicsClientId=sim.client,
-                )[2]
+                rgba = camera.render_rgba(matrix)
             with timed("pack rgb8"):
-                frame = _pack(rgba, c.width * c.height, c.encoding)
+                frame = camera.pack(rgba)
             with timed("  before: (N,3) view .tobytes()"):
                 np.asarray(rgba, dtype=np.uint8).reshape(-1, 4)[:, :3].tobytes()
             with timed("build Image"):

@@ -273,12 +273,19 @@ class Camera:
 
     def render(self) -> bytes:
         """One frame as packed rows in the configured encoding (``step = width·channels``)."""
-        p, c = self.sim.p, self.config
-        position, orientation = self.sim.link_pose(self.entity, c.link)
+        return self.pack(self.render_rgba(self.view_matrix()))
+
+    def view_matrix(self) -> Any:
+        """PyBullet's view matrix from the camera link's pose, looking along its +x."""
+        position, orientation = self.sim.link_pose(self.entity, self.config.link)
         forward = rotate(orientation, (1.0, 0.0, 0.0))
         up = rotate(orientation, (0.0, 0.0, 1.0))
         target = tuple(a + b for a, b in zip(position, forward, strict=False))
-        view = p.computeViewMatrix(position, target, up)
+        return self.sim.p.computeViewMatrix(position, target, up)
+
+    def render_rgba(self, view: Any) -> Any:
+        """The RGBA pixels seen through ``view`` (no depth use, no segmentation mask)."""
+        p, c = self.sim.p, self.config
         renderer = p.ER_BULLET_HARDWARE_OPENGL if self.sim.egl else p.ER_TINY_RENDERER
         _w, _h, rgba, _depth, _seg = p.getCameraImage(
             c.width,
@@ -289,6 +296,11 @@ class Camera:
             flags=p.ER_NO_SEGMENTATION_MASK,
             physicsClientId=self.sim.client,
         )
+        return rgba
+
+    def pack(self, rgba: Any) -> bytes:
+        """RGBA pixels as packed rows in the configured encoding."""
+        c = self.config
         return _pack(rgba, c.width * c.height, c.encoding)
 
 
