@@ -68,8 +68,11 @@ def test_timer_starts_its_process_later(robot: Any) -> None:
 
 
 def test_ctrl_c_stops_everything(robot: Any) -> None:
-    # runs last in the module: stop() also checks that no process of the launch survived
+    # runs last in the module: stop() also checks that no process of the launch survived.
+    # xdist may run it on a worker of its own, with a fresh launch: wait for the timer's
+    # process here too rather than count on test_timer_starts_its_process_later
     robot.process("greeter").wait_running(timeout=30)
+    assert robot.process("late").wait_exit(timeout=30) == 0
     result = robot.stop()
     result.assert_exit_codes({"late": 0, "*": {0, -2}})
     assert result.returncode == 0
