@@ -5,12 +5,15 @@ from __future__ import annotations
 import itertools
 import os
 import socket
+from pathlib import Path
 
 ROS_DOMAIN_ENV = "ROS_DOMAIN_ID"
 # ROS 2 domain ids that are safe on every platform are 0-101; 0 is everyone's default
 _DOMAINS = 101
 _WORKER_SPREAD = 50
 _counter = itertools.count()
+# DDS (RTPS) gives domain d the UDP ports 7400 + 250·d and the 249 after them
+_RTPS_BASE, _RTPS_GAIN = 7400, 250
 
 
 def free_loopback_port() -> int:
@@ -29,8 +32,36 @@ def domain_id() -> int:
     """A ROS domain in 1..101 for the next launch: consecutive launches of one process get
     different domains, and xdist workers (``gw0``, ``gw1``, ...) start far apart.
 
-    The router port is what really separates launches; the domain is a second fence.
+    The router port is what really separates launches; the domain is a second fence, for real
+    DDS nodes (the bridge's tests). A domain some DDS participant on this machine already uses
+    (another test run's, say) is passed over while a free one is left.
     """
     worker = os.environ.get("PYTEST_XDIST_WORKER", "gw0").removeprefix("gw")
     offset = int(worker) * _WORKER_SPREAD if worker.isdigit() else 0
-    return 1 + (offset + next(_counter)) % _DOMAINS
+    busy = _udp_ports_in_use()
+    domain = 1 + (offset + next(_counter)) % _DOMAINS
+    for _ in range(_DOMAINS):
+        if not _domain_busy(domain, busy):
+            break
+        domain = 1 + (offset + next(_counter)) % _DOMAINS
+    return domain
+
+
+def _domain_busy(domain: int, ports: set[int]) -> bool:
+    first = _RTPS_BASE + _RTPS_GAIN * domain
+    return any(first <= port < first + _RTPS_GAIN for port in ports)
+
+
+def _udp_ports_in_use() -> set[int]:
+    """The local UDP ports bound on this machine (from /proc; empty where there is none)."""
+    ports = set()
+    for table in ("/proc/net/udp", "/proc/net/udp6"):
+        try:
+            rows = Path(table).read_text().splitlines()[1:]
+        except OSError:
+            continue
+        for row in rows:
+            fields = row.split()
+            if len(fields) > 1:
+                ports.add(int(fields[1].rsplit(":", 1)[1], 16))
+    return ports

@@ -49,3 +49,28 @@ def test_the_timeout_scale_multiplies_every_deadline(monkeypatch):
         timeout_scale()
     monkeypatch.delenv(TIMEOUT_SCALE_ENV)
     assert scaled(4) == 4.0
+
+
+def test_a_domain_a_dds_participant_uses_is_passed_over():
+    # another test run's real DDS nodes hold a domain's RTPS ports (7400 + 250·d and after):
+    # hold every domain's but one, as such nodes would; the next launch must get that one
+    import socket
+
+    from launchkit.testing._isolation import domain_id
+
+    held = []
+    try:
+        for domain in range(1, 102):
+            if domain == 57:
+                continue
+            udp = socket.socket(socket.AF_INET, socket.SOCK_DGRAM)
+            try:
+                udp.bind(("127.0.0.1", 7400 + 250 * domain + 7))
+            except OSError:
+                udp.close()  # bound already by someone: busy all the same
+                continue
+            held.append(udp)
+        assert domain_id() == 57
+    finally:
+        for udp in held:
+            udp.close()
