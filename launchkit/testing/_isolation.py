@@ -30,14 +30,17 @@ def router_endpoint(port: int) -> str:
 
 def domain_id() -> int:
     """A ROS domain in 1..101 for the next launch: consecutive launches of one process get
-    different domains, and xdist workers (``gw0``, ``gw1``, ...) start far apart.
+    different domains, and xdist workers (``gw0``, ``gw1``, ...) and test runs start apart.
 
     The router port is what really separates launches; the domain is a second fence, for real
     DDS nodes (the bridge's tests). A domain some DDS participant on this machine already uses
     (another test run's, say) is passed over while a free one is left.
     """
     worker = os.environ.get("PYTEST_XDIST_WORKER", "gw0").removeprefix("gw")
+    # the process id spreads two test runs started at the same moment (their DDS ports are
+    # not bound yet when both choose)
     offset = int(worker) * _WORKER_SPREAD if worker.isdigit() else 0
+    offset += os.getpid() % _WORKER_SPREAD
     busy = _udp_ports_in_use()
     domain = 1 + (offset + next(_counter)) % _DOMAINS
     for _ in range(_DOMAINS):
