@@ -42,11 +42,10 @@ def domain_id() -> int:
     offset = int(worker) * _WORKER_SPREAD if worker.isdigit() else 0
     offset += os.getpid() % _WORKER_SPREAD
     busy = _udp_ports_in_use()
-    domain = 1 + (offset + next(_counter)) % _DOMAINS
     for _ in range(_DOMAINS):
+        domain = 1 + (offset + next(_counter)) % _DOMAINS
         if not _domain_busy(domain, busy):
             break
-        domain = 1 + (offset + next(_counter)) % _DOMAINS
     return domain
 
 
