@@ -26,7 +26,6 @@ import selectors
 import socket
 import struct
 from collections import deque
-from dataclasses import dataclass, field
 from typing import Any, Protocol
 
 from launchkit.description.process_spec import OUTPUT_MODES, ProcessSpec
@@ -63,12 +62,12 @@ class ChildHost(Protocol):
         """A launch line."""
 
 
-@dataclass
 class _Connection:
-    sock: socket.socket
-    owner: SupervisedProcess
-    peer: int
-    started: dict[int, SupervisedProcess] = field(default_factory=dict)
+    def __init__(self, sock: socket.socket, owner: SupervisedProcess, peer: int) -> None:
+        self.sock = sock
+        self.owner = owner
+        self.peer = peer
+        self.started: dict[int, SupervisedProcess] = {}
 
 
 class ChildRequests:

@@ -52,6 +52,18 @@ def test_running_a_yaml_file_loads_no_lxml(tmp_path: Path) -> None:
     assert loaded_by("run", str(launch)) == ["yaml"]
 
 
+def test_an_empty_launch_creates_no_dataclasses(tmp_path: Path) -> None:
+    # dataclasses imports inspect (ast, dis, tokenize) and compiles each class's methods at
+    # import: the modules every launch needs declare plain classes (launchkit._record).
+    # lxml imports inspect itself, so only a YAML launch is free of it.
+    xml = tmp_path / "empty.launch.xml"
+    xml.write_text("<launch/>\n")
+    assert loaded_by("run", str(xml), prefixes=("dataclasses",)) == ["lxml"]
+    yaml = tmp_path / "empty.launch.yaml"
+    yaml.write_text("launch: []\n")
+    assert loaded_by("run", str(yaml), prefixes=("dataclasses", "inspect")) == ["yaml"]
+
+
 def description_modules(tmp_path: Path, text: str) -> set[str]:
     """The description and tag modules ``launchkit run`` of an XML file ``text`` imported."""
     launch = tmp_path / "file.launch.xml"

@@ -6,7 +6,6 @@ from __future__ import annotations
 import bisect
 import functools
 import re
-from dataclasses import dataclass, field
 from pathlib import Path
 
 from lxml import etree
@@ -21,16 +20,13 @@ def _attribute_pattern(name: str) -> re.Pattern[str]:
     return re.compile(r"\s" + re.escape(name) + r"\s*=\s*([\"'])")
 
 
-@dataclass
 class SourceFile:
     """A launch file's path and text (for columns in error messages)."""
 
-    path: Path
-    text: str
-    _line_starts: list[int] = field(default_factory=list)
-
-    def __post_init__(self) -> None:
-        self._line_starts = [0] + [m.end() for m in re.finditer("\n", self.text)]
+    def __init__(self, path: Path, text: str) -> None:
+        self.path = path
+        self.text = text
+        self._line_starts = [0] + [m.end() for m in re.finditer("\n", text)]
 
     def offset(self, line: int) -> int:
         """Character offset where 1-based ``line`` starts."""
