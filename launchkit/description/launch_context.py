@@ -218,9 +218,9 @@ class LaunchContext:
         self._ros: RosLink | None = None
         #: set by the supervisor: told about every ``$(command)``'s process group
         self.child_groups: ChildGroups | None = None
-        #: set by the supervisor: the private folder generated files go in (removed even when
-        #: the launcher is killed); None: the system's temporary folder
-        self.scratch_root: Path | None = None
+        #: set by the supervisor: makes (on the first call) the private folder generated files
+        #: go in (removed even when the launcher is killed); None: the system's temporary folder
+        self.scratch_root: Callable[[], Path] | None = None
 
     @property
     def configurations(self) -> dict[str, str]:
@@ -242,7 +242,8 @@ class LaunchContext:
         import tempfile  # with random and hashlib: only for a file that writes one
 
         if self._scratch is None:
-            self._scratch = Path(tempfile.mkdtemp(prefix="launchkit-", dir=self.scratch_root))
+            root = self.scratch_root() if self.scratch_root is not None else None
+            self._scratch = Path(tempfile.mkdtemp(prefix="launchkit-", dir=root))
         handle, name = tempfile.mkstemp(prefix=prefix, suffix=suffix, dir=self._scratch)
         with os.fdopen(handle, "w") as stream:
             stream.write(text)

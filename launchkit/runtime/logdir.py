@@ -12,7 +12,6 @@ from __future__ import annotations
 import fcntl
 import os
 import shutil
-import socket
 import time
 from collections.abc import Mapping
 from pathlib import Path
@@ -103,7 +102,7 @@ def create_run_dir(environment: Mapping[str, str], keep_runs: int | None = None)
     root = log_root(environment)
     now = time.time()  # as datetime's "%Y-%m-%d-%H-%M-%S-%f", without importing datetime
     stamp = time.strftime("%Y-%m-%d-%H-%M-%S", time.localtime(now)) + f"-{int(now % 1 * 1e6):06d}"
-    run_dir = root / f"{stamp}-{socket.gethostname()}-{os.getpid()}"
+    run_dir = root / f"{stamp}-{os.uname().nodename}-{os.getpid()}"  # socket.gethostname()
     run_dir.mkdir(parents=True, exist_ok=True)
     marker = os.open(run_dir / RUN_MARKER, os.O_RDWR | os.O_CREAT, 0o644)
     fcntl.flock(marker, fcntl.LOCK_EX)

@@ -287,6 +287,18 @@ def check_program(spec: ProcessSpec) -> None:
     )
 
 
+def check_programs(specs: list[ProcessSpec]) -> None:
+    """:func:`check_program` for each spec, in order; a program already found with the same
+    folder and ``PATH`` is not looked up again (a PATH search is a dozen ``stat`` calls, and a
+    launch may start one program a hundred times)."""
+    found: set[tuple[str | None, str, str | None]] = set()
+    for spec in specs:
+        key = (spec.cwd, spec.cmd[0], spec.env.get("PATH"))
+        if key not in found:
+            check_program(spec)
+            found.add(key)
+
+
 def _open_gate(fd: int) -> None:
     try:
         os.write(fd, b"\n")
