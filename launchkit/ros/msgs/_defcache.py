@@ -16,7 +16,6 @@ from __future__ import annotations
 
 import json
 import os
-import tempfile
 from pathlib import Path
 from typing import Any
 
@@ -107,6 +106,8 @@ def _write(path: Path, version: str, defs: Definitions) -> None:
         {"format": FORMAT, "rosbags": version, "distro": DISTRO, "types": defs},
         separators=(",", ":"),
     )
+    import tempfile  # only here: it imports shutil, random, bz2 and lzma (~5 ms)
+
     tmp = None
     try:
         path.parent.mkdir(parents=True, exist_ok=True)
