@@ -3,7 +3,9 @@
 from __future__ import annotations
 
 import os
+import shutil
 import signal
+import tempfile
 from collections.abc import Callable, Mapping
 from dataclasses import dataclass, field
 from pathlib import Path
@@ -20,6 +22,13 @@ from launchkit.runtime.recorder import Recorded, Recorder
 # No test starts the shared background router unless it means to (tests/ros/test_router_*.py
 # set this back for their commands): a stray one would outlive the test that started it.
 os.environ["LAUNCHKIT_ROUTER_AUTOSTART"] = "0"
+
+# The message definitions' cache (launchkit/ros/msgs/_defcache.py) goes to a folder of the test
+# run, for every process the tests start, never to the real home's ~/.cache. Set before pytest
+# starts its xdist workers, which inherit it; the run that made it removes it.
+_OWN_CACHE = None if os.environ.get("LAUNCHKIT_CACHE_DIR") else tempfile.mkdtemp(prefix="lk-cache-")
+if _OWN_CACHE is not None:
+    os.environ["LAUNCHKIT_CACHE_DIR"] = _OWN_CACHE
 
 
 @dataclass
@@ -62,6 +71,12 @@ def pytest_configure(config: pytest.Config) -> None:
     every command a test stops with SIGINT (a Python program then never sees KeyboardInterrupt)."""
     if signal.getsignal(signal.SIGINT) == signal.SIG_IGN:
         signal.signal(signal.SIGINT, signal.default_int_handler)
+
+
+def pytest_unconfigure(config: pytest.Config) -> None:
+    """Remove the test run's message-definition cache (see above)."""
+    if _OWN_CACHE is not None:
+        shutil.rmtree(_OWN_CACHE, ignore_errors=True)
 
 
 @pytest.fixture

@@ -7,8 +7,7 @@ from typing import Any
 
 from launchkit.errors import UserError
 from launchkit.ros.msgs._codec import codec
-from launchkit.ros.msgs._srv_defs import SERVICES
-from launchkit.ros.msgs._typestore import typestore, typestore_for
+from launchkit.ros.msgs._typestore import known_names, typestore_for
 
 
 class MessageTypeError(UserError):
@@ -43,19 +42,12 @@ def normalize_type_name(name: str, kind: str = "msg") -> str:
 
 def type_names(kind: str = "msg") -> list[str]:
     """Every known type name of a kind (``msg`` or ``srv``), sorted."""
-    names = list(typestore(services=kind != "msg").types)  # a copy: services may be added
-    if kind == "msg":
-        return sorted(n for n in names if "/msg/" in n)
-    return sorted(n for n in names if "/srv/" in n and not n.endswith(_SRV_PARTS))
-
-
-_SRV_PARTS = ("_Request", "_Response", "_Event")
+    return sorted(known_names(kind))
 
 
 def packages() -> set[str]:
     """Names of the packages that have message or service types."""
-    names = [*typestore(services=False).types, *SERVICES]  # without registering the services
-    return {name.split("/", 1)[0] for name in names}
+    return {name.split("/", 1)[0] for name in (*known_names("msg"), *known_names("srv"))}
 
 
 def get_message(name: str) -> Any:

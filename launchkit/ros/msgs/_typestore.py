@@ -3,19 +3,24 @@
 rosbags generates plain dataclasses whose fields are all required and whose numeric arrays must be
 numpy arrays. ``_make_rclpy_like`` patches each class so that ``Twist()`` works, every field has
 rclpy's default, and lists assigned to numeric array fields become numpy arrays.
+
+A message type is registered (its class generated) when first asked for, with the types inside
+it, from Jazzy's definitions (:mod:`launchkit.ros.msgs._defcache`: a per-user cache, so that a
+process does not import rosbags' store modules of every ROS distribution); a service likewise.
 """
 
 from __future__ import annotations
 
 import functools
 import threading
-from collections.abc import Callable
+from collections.abc import Callable, Iterable
 from typing import Any
 
 import numpy as np
-from rosbags.typesys import Stores, get_types_from_msg, get_typestore
+from rosbags.typesys import get_types_from_msg
 from rosbags.typesys.store import Typestore
 
+from launchkit.ros.msgs._defcache import Definitions, definitions
 from launchkit.ros.msgs._srv_defs import SERVICES
 
 _BASE, _NAME, _ARRAY, _SEQUENCE = 1, 2, 3, 4
@@ -44,27 +49,28 @@ _MSG_DEFAULTS: dict[str, dict[str, Any]] = {
 
 _lock = threading.Lock()
 _store: Typestore | None = None
+_jazzy: Definitions | None = None  # every Jazzy message's definition, registered or not
 _registered: set[str] = set()  # the services of SERVICES registered so far
 _SERVICE_PARTS = ("_Request", "_Response", "_Event")
 
 
 def typestore(services: bool = True) -> Typestore:
-    """The process-wide typestore (built on first use); ``services``: with every service type
-    of launchkit's (what listing them needs). For one type, :func:`typestore_for`."""
+    """The process-wide typestore with every Jazzy message type registered; ``services``: and
+    every service type of launchkit's. For one type (much cheaper), :func:`typestore_for`."""
     with _lock:
         store = _built()
+        _register_messages(store, _definitions())
         if services:
             _register_services(store, [name for name in SERVICES if name not in _registered])
         return store
 
 
 def typestore_for(type_name: str) -> Typestore:
-    """The typestore, with what looking up ``type_name`` needs: the message types, and for a
-    service's type (``pkg/srv/Name``, ``..._Request``, ...) that one service.
+    """The typestore, with what looking up ``type_name`` needs: a message type and the types
+    inside it, or for a service's type (``pkg/srv/Name``, ``..._Request``, ...) that service.
 
-    Parsing and registering a service (generated code for its four types) costs about as much
-    as a few dozen message types: a node registers the six parameter services it serves, and
-    ``launchkit topic echo`` none, instead of all of them at start-up.
+    Generating the code of a type costs: ``launchkit topic echo /odom`` registers the ten types
+    of an Odometry, a node the six parameter services it serves (and their messages).
     """
     with _lock:
         store = _built()
@@ -74,22 +80,65 @@ def typestore_for(type_name: str) -> Typestore:
                 name = name.removesuffix(part)
             if name in SERVICES and name not in _registered:
                 _register_services(store, [name])
+        elif type_name not in store.types:
+            _register_messages(store, [type_name])
         return store
+
+
+def known_names(kind: str) -> set[str]:
+    """Every type name of a kind (``msg`` or ``srv``) that can be looked up, without registering
+    any: Jazzy's messages, launchkit's services, and types registered by hand (a bag's)."""
+    with _lock:
+        registered = list(_built().types)
+        if kind == "msg":
+            return {*_definitions(), *(n for n in registered if "/msg/" in n)}
+        services = (n for n in registered if "/srv/" in n and not n.endswith(_SERVICE_PARTS))
+        return {*SERVICES, *services}
 
 
 def _built() -> Typestore:
     global _store
     if _store is None:
-        _store = _build()
+        _store = Typestore()
     return _store
 
 
-def _build() -> Typestore:
-    ts = get_typestore(Stores.ROS2_JAZZY)
-    _chars_as_uint8(ts)
-    for cls_name in list(ts.types):
-        _make_rclpy_like(ts, cls_name)
-    return ts
+def _definitions() -> Definitions:
+    global _jazzy
+    if _jazzy is None:
+        _jazzy = definitions()
+    return _jazzy
+
+
+def _register_messages(ts: Typestore, names: Iterable[str]) -> None:
+    """Register the Jazzy types ``names`` and the types they contain (those not registered yet;
+    names Jazzy does not have are left out: looking them up fails as before)."""
+    jazzy = _definitions()
+    missing: dict[str, Any] = {}
+    todo = list(names)
+    while todo:
+        name = todo.pop()
+        if name in missing or name in ts.types or name not in jazzy:
+            continue
+        missing[name] = jazzy[name]
+        todo.extend(_references(jazzy[name][1]))
+    if not missing:
+        return
+    ts.register(missing)  # at once: each register() generates and compiles code
+    _chars_as_uint8(ts, missing)
+    for name in missing:
+        _make_rclpy_like(ts, name)
+
+
+def _references(fields: Iterable[tuple[str, Any]]) -> list[str]:
+    """The type names the fields use."""
+    found = []
+    for _, desc in fields:
+        while desc[0] in (_ARRAY, _SEQUENCE):
+            desc = desc[1][0]
+        if desc[0] == _NAME:
+            found.append(desc[1])
+    return found
 
 
 def _register_services(ts: Typestore, names: list[str]) -> None:
@@ -98,13 +147,14 @@ def _register_services(ts: Typestore, names: list[str]) -> None:
     services: dict[str, Any] = {}
     for name in names:
         services.update(_service_types(name, SERVICES[name]))
+    _register_messages(ts, [ref for _, fields in services.values() for ref in _references(fields)])
     ts.register(services)  # at once: each register() generates and compiles code
     for cls_name in services:
         _make_rclpy_like(ts, cls_name)
     _registered.update(names)
 
 
-def _chars_as_uint8(ts: Typestore) -> None:
+def _chars_as_uint8(ts: Typestore, names: Iterable[str]) -> None:
     # rosidl maps the .msg ``char`` to uint8; rosbags keeps "char", which changes the RIHS01 hash
     # (service_msgs/ServiceEventInfo, hence every service hash). The CDR bytes are the same.
     def fix(desc: Any) -> Any:
@@ -115,7 +165,8 @@ def _chars_as_uint8(ts: Typestore) -> None:
             return (kind, (fix(detail[0]), detail[1]))
         return desc
 
-    for name, (consts, fields) in list(ts.fielddefs.items()):
+    for name in names:
+        consts, fields = ts.fielddefs[name]
         ts.fielddefs[name] = (consts, [(fname, fix(desc)) for fname, desc in fields])
 
 
