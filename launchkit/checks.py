@@ -11,6 +11,7 @@ from __future__ import annotations
 from collections.abc import Mapping
 from pathlib import Path
 
+from launchkit._record import Record
 from launchkit.description.actions import DeclareArgument, Include
 from launchkit.description.actions.base import Action
 from launchkit.description.launch_description import LaunchDescription, walk
@@ -200,6 +201,8 @@ def _var_names(value: object) -> set[str]:
             names.add(name)
     elif hasattr(value, "args") and isinstance(value, Substitution):
         names |= _var_names(getattr(value, "args", ()))
-    elif hasattr(value, "__dataclass_fields__"):
+    elif isinstance(value, Record):  # a condition, an include's <arg>, a <keep>
+        names |= _var_names(list(value.fields()))
+    elif hasattr(value, "__dataclass_fields__"):  # the values of a node's tags
         names |= _var_names([getattr(value, name) for name in value.__dataclass_fields__])
     return names

@@ -17,7 +17,7 @@ outermost first: ``a.launch.xml:12:3 -> b.launch.py:40: error: ...``.
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from launchkit._record import Frozen
 
 _NAMED_CONTROLS = {"\n": "\\n", "\r": "\\r", "\0": "\\0"}
 #: Control characters (C0 but tab, DEL, C1) as escapes: a name or a file must not be able to
@@ -34,13 +34,18 @@ def printable(text: str) -> str:
     return text.translate(_ESCAPES)
 
 
-@dataclass(frozen=True, slots=True)  # slots: a large file has one per element and value
-class Location:
+class Location(Frozen):
     """Where in a launch file something is: 1-based line and column (0 when unknown)."""
 
+    __slots__ = ("col", "file", "line")  # a large file has one per element and value
     file: str
-    line: int = 0
-    col: int = 0
+    line: int
+    col: int
+
+    def __init__(self, file: str, line: int = 0, col: int = 0) -> None:
+        object.__setattr__(self, "file", file)
+        object.__setattr__(self, "line", line)
+        object.__setattr__(self, "col", col)
 
     def __str__(self) -> str:
         if self.line and self.col:

@@ -2,9 +2,9 @@
 
 from __future__ import annotations
 
-from dataclasses import dataclass
 from typing import TYPE_CHECKING
 
+from launchkit._record import Frozen
 from launchkit.description.substitutions.base import Value, describe, perform
 from launchkit.description.truth import CONDITION_EXPECTED, condition_value
 from launchkit.errors import Location, RuntimeLaunchError
@@ -13,13 +13,18 @@ if TYPE_CHECKING:
     from launchkit.description.launch_context import LaunchContext
 
 
-@dataclass(frozen=True)
-class Condition:
+class Condition(Frozen):
     """``if="VALUE"`` (or ``unless`` when ``negate``), evaluated with the strict rule."""
 
+    __slots__ = ("location", "negate", "value")
     value: Value
     negate: bool
-    location: Location | None = None
+    location: Location | None
+
+    def __init__(self, value: Value, negate: bool, location: Location | None = None) -> None:
+        object.__setattr__(self, "value", value)
+        object.__setattr__(self, "negate", negate)
+        object.__setattr__(self, "location", location)
 
     def evaluate(self, context: LaunchContext) -> bool:
         """Whether the guarded action runs; an error for anything but true/1/false/0."""

@@ -12,17 +12,14 @@ imports it back.
 
 from __future__ import annotations
 
-import copy
 import os
-import shutil
-import tempfile
 from collections import deque
 from collections.abc import Callable, Iterator, Sequence
 from contextlib import contextmanager
-from dataclasses import dataclass, field
 from pathlib import Path
 from typing import TYPE_CHECKING, Any, Protocol
 
+from launchkit._record import Frozen, Record
 from launchkit.packages import PackageIndex
 
 if TYPE_CHECKING:
@@ -31,20 +28,41 @@ if TYPE_CHECKING:
     from launchkit.errors import LaunchkitError, Location
 
 
-@dataclass
-class Scope:
+class Scope(Record):
     """What a scoped ``<group>`` saves and restores."""
 
-    configurations: dict[str, str] = field(default_factory=dict)
-    environment: dict[str, str] = field(default_factory=dict)
+    __slots__ = ("configurations", "environment", "global_params", "machine", "remaps")
+    configurations: dict[str, str]
+    environment: dict[str, str]
     # (name, value) from <set_parameter>, a file path from <set_parameters_from_file>, in order
-    global_params: list[tuple[str, str] | str] = field(default_factory=list)
-    remaps: list[tuple[str, str]] = field(default_factory=list)
-    machine: str = ""  # ``<group machine>``: the host its processes run on ("" for this one)
+    global_params: list[tuple[str, str] | str]
+    remaps: list[tuple[str, str]]
+    machine: str  # ``<group machine>``: the host its processes run on ("" for this one)
+
+    def __init__(
+        self,
+        configurations: dict[str, str] | None = None,
+        environment: dict[str, str] | None = None,
+        global_params: list[tuple[str, str] | str] | None = None,
+        remaps: list[tuple[str, str]] | None = None,
+        machine: str = "",
+    ) -> None:
+        self.configurations = {} if configurations is None else configurations
+        self.environment = {} if environment is None else environment
+        self.global_params = [] if global_params is None else global_params
+        self.remaps = [] if remaps is None else remaps
+        self.machine = machine
 
     def copy(self) -> Scope:
-        """An independent copy (what a timer captures)."""
-        return copy.deepcopy(self)
+        """An independent copy (what a timer captures): new containers; what they hold
+        (strings and tuples of strings) cannot change."""
+        return Scope(
+            dict(self.configurations),
+            dict(self.environment),
+            list(self.global_params),
+            list(self.remaps),
+            self.machine,
+        )
 
 
 class Visitable(Protocol):
@@ -138,12 +156,16 @@ class ChildGroups(Protocol):
         """``pgid`` is gone (its id may be reused)."""
 
 
-@dataclass(frozen=True)
-class Snapshot:
+class Snapshot(Frozen):
     """A scope and file captured for later (timers run their actions in it)."""
 
+    __slots__ = ("current_file", "scope")
     scope: Scope
     current_file: Path | None
+
+    def __init__(self, scope: Scope, current_file: Path | None) -> None:
+        object.__setattr__(self, "scope", scope)
+        object.__setattr__(self, "current_file", current_file)
 
 
 #: Loads the launch file at a path (the location is the ``<include>`` that asks, for errors;
@@ -196,9 +218,9 @@ class LaunchContext:
         self._ros: RosLink | None = None
         #: set by the supervisor: told about every ``$(command)``'s process group
         self.child_groups: ChildGroups | None = None
-        #: set by the supervisor: the private folder generated files go in (removed even when
-        #: the launcher is killed); None: the system's temporary folder
-        self.scratch_root: Path | None = None
+        #: set by the supervisor: makes (on the first call) the private folder generated files
+        #: go in (removed even when the launcher is killed); None: the system's temporary folder
+        self.scratch_root: Callable[[], Path] | None = None
 
     @property
     def configurations(self) -> dict[str, str]:
@@ -217,8 +239,11 @@ class LaunchContext:
 
     def write_scratch_file(self, prefix: str, suffix: str, text: str) -> Path:
         """Write a generated file (a node's parameters) that lives as long as the run."""
+        import tempfile  # with random and hashlib: only for a file that writes one
+
         if self._scratch is None:
-            self._scratch = Path(tempfile.mkdtemp(prefix="launchkit-", dir=self.scratch_root))
+            root = self.scratch_root() if self.scratch_root is not None else None
+            self._scratch = Path(tempfile.mkdtemp(prefix="launchkit-", dir=root))
         handle, name = tempfile.mkstemp(prefix=prefix, suffix=suffix, dir=self._scratch)
         with os.fdopen(handle, "w") as stream:
             stream.write(text)
@@ -230,6 +255,8 @@ class LaunchContext:
             self._ros.close()
             self._ros = None
         if self._scratch is not None:
+            import shutil
+
             shutil.rmtree(self._scratch, ignore_errors=True)
             self._scratch = None
 

@@ -1,6 +1,7 @@
 """Syntax to description: each launch file syntax is a thin layer over the same description.
 
-``launch_loader.py`` picks the frontend by file suffix; ``xml/`` reads XML with lxml; ``yaml/``
+``launch_loader.py`` picks the frontend by file suffix; ``xml/`` reads XML with expat
+(a plain file of up to 128 KiB) or lxml; ``yaml/``
 reads YAML (PyYAML's events, with line and column marks);
 ``python/`` runs ``*.launch.py`` files against stand-ins of ROS's ``launch`` API. The tag
 parsers in ``tags/`` serve every syntax through the syntax-neutral

@@ -45,7 +45,7 @@ class LaunchLoader:
 
     @cached_property
     def xml(self) -> XmlParser:
-        """The XML frontend (lxml is imported on first use)."""
+        """The XML frontend (imported on first use; lxml only for a file expat does not read)."""
         from launchkit.frontend.xml.parser import XmlParser
 
         return XmlParser(self.actions)

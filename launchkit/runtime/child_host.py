@@ -8,10 +8,15 @@ from collections.abc import Callable
 
 from launchkit.description.process_spec import ProcessSpec
 from launchkit.errors import LaunchkitError
-from launchkit.runtime.child_requests import RequestError
 from launchkit.runtime.hooks import SupervisorHooks
 from launchkit.runtime.lifecycle import SendSignal
 from launchkit.runtime.process import SupervisedProcess, check_program
+
+
+class RequestError(Exception):
+    """A request that cannot be served; its message is the error reply. (Here, not with the
+    socket in :mod:`launchkit.runtime.child_requests`: a launch imports that module, and its
+    json and socket, only when it starts its first process.)"""
 
 
 class ChildHostMixin:

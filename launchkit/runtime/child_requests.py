@@ -26,11 +26,11 @@ import selectors
 import socket
 import struct
 from collections import deque
-from dataclasses import dataclass, field
 from typing import Any, Protocol
 
 from launchkit.description.process_spec import OUTPUT_MODES, ProcessSpec
 from launchkit.envvars import SUPERVISOR_SOCKET
+from launchkit.runtime.child_host import RequestError
 from launchkit.runtime.lifecycle import State
 from launchkit.runtime.process import SupervisedProcess
 from launchkit.runtime.supervisor_client import MAX_PACKET
@@ -41,10 +41,6 @@ _UCRED = struct.Struct("3i")  # pid, uid, gid
 MAX_CONNECTIONS = 256
 #: Refused connections kept until their peer's request arrives (so it can read why).
 MAX_REFUSED = 16
-
-
-class RequestError(Exception):
-    """A request that cannot be served; its message is the error reply."""
 
 
 class ChildHost(Protocol):
@@ -63,12 +59,12 @@ class ChildHost(Protocol):
         """A launch line."""
 
 
-@dataclass
 class _Connection:
-    sock: socket.socket
-    owner: SupervisedProcess
-    peer: int
-    started: dict[int, SupervisedProcess] = field(default_factory=dict)
+    def __init__(self, sock: socket.socket, owner: SupervisedProcess, peer: int) -> None:
+        self.sock = sock
+        self.owner = owner
+        self.peer = peer
+        self.started: dict[int, SupervisedProcess] = {}
 
 
 class ChildRequests:

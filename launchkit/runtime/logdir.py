@@ -12,12 +12,11 @@ from __future__ import annotations
 import fcntl
 import os
 import shutil
-import socket
 import time
 from collections.abc import Mapping
-from dataclasses import dataclass
 from pathlib import Path
 
+from launchkit._record import Frozen, Record
 from launchkit.envvars import LOG_FILE_MB, LOG_KEEP_RUNS, LOG_RUN_MB
 from launchkit.errors import UserError
 
@@ -25,15 +24,22 @@ RUN_MARKER = ".launchkit-run"
 _MB = 1024 * 1024
 
 
-@dataclass(frozen=True)
-class LogLimits:
+class LogLimits(Frozen):
     """How much a run may log: a file's size before it is rotated (bytes, 0: never), a run
     folder's size after which child output is no longer logged (bytes, 0: no limit), and how
     many run folders are kept (0: all)."""
 
-    file_bytes: int = 50 * _MB
-    run_bytes: int = 1000 * _MB
-    keep_runs: int = 50
+    __slots__ = ("file_bytes", "keep_runs", "run_bytes")
+    file_bytes: int
+    run_bytes: int
+    keep_runs: int
+
+    def __init__(
+        self, file_bytes: int = 50 * _MB, run_bytes: int = 1000 * _MB, keep_runs: int = 50
+    ) -> None:
+        object.__setattr__(self, "file_bytes", file_bytes)
+        object.__setattr__(self, "run_bytes", run_bytes)
+        object.__setattr__(self, "keep_runs", keep_runs)
 
     @classmethod
     def from_environment(cls, environment: Mapping[str, str]) -> LogLimits:
@@ -72,12 +78,16 @@ def log_root(environment: Mapping[str, str]) -> Path:
     return Path(environment.get("HOME", "~")).expanduser() / ".launchkit" / "log"
 
 
-@dataclass
-class RunDir:
+class RunDir(Record):
     """A run's log folder, and the open marker that says it is in use."""
 
+    __slots__ = ("marker_fd", "path")
     path: Path
     marker_fd: int
+
+    def __init__(self, path: Path, marker_fd: int) -> None:
+        self.path = path
+        self.marker_fd = marker_fd
 
     def release(self) -> None:
         """The run is over: its folder may be pruned by later runs."""
@@ -92,7 +102,7 @@ def create_run_dir(environment: Mapping[str, str], keep_runs: int | None = None)
     root = log_root(environment)
     now = time.time()  # as datetime's "%Y-%m-%d-%H-%M-%S-%f", without importing datetime
     stamp = time.strftime("%Y-%m-%d-%H-%M-%S", time.localtime(now)) + f"-{int(now % 1 * 1e6):06d}"
-    run_dir = root / f"{stamp}-{socket.gethostname()}-{os.getpid()}"
+    run_dir = root / f"{stamp}-{os.uname().nodename}-{os.getpid()}"  # socket.gethostname()
     run_dir.mkdir(parents=True, exist_ok=True)
     marker = os.open(run_dir / RUN_MARKER, os.O_RDWR | os.O_CREAT, 0o644)
     fcntl.flock(marker, fcntl.LOCK_EX)

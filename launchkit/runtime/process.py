@@ -18,9 +18,9 @@ import shutil
 import signal
 import subprocess
 from collections.abc import Callable
-from dataclasses import dataclass, field
 from typing import Protocol
 
+from launchkit._record import Record
 from launchkit.description.process_spec import ProcessSpec
 from launchkit.errors import LaunchFileError, LaunchkitError
 from launchkit.runtime.lifecycle import Escalation, Lifecycle, RespawnPolicy, State
@@ -33,13 +33,18 @@ READ_CHUNK = 64 * 1024
 _GATE = 'read -r _ || exit 125; exec "$0" "$@" </dev/null'
 
 
-@dataclass
-class Stream:
+class Stream(Record):
     """One output channel of a child (a pipe, or a pty for emulate_tty)."""
 
+    __slots__ = ("fd", "kind", "lines")
     fd: int
     kind: str  # "stdout" or "stderr"
-    lines: LineBuffer = field(default_factory=LineBuffer)
+    lines: LineBuffer
+
+    def __init__(self, fd: int, kind: str, lines: LineBuffer | None = None) -> None:
+        self.fd = fd
+        self.kind = kind
+        self.lines = LineBuffer() if lines is None else lines
 
 
 def lifecycle_of(spec: ProcessSpec) -> Lifecycle:
@@ -118,22 +123,25 @@ def by_machine(local: ProcessFactory, remote: ProcessFactory | None) -> ProcessF
     return make
 
 
-@dataclass
 class ManagedProcess:
     """A real process the supervisor owns: its spec, its current incarnation, its lifecycle.
     ``on_spawn`` is told each new process group (the orphan guard watches them)."""
 
-    spec: ProcessSpec
-    label: str
-    index: int
-    on_spawn: Callable[[int], None] = lambda _pgid: None
-    lifecycle: Lifecycle = field(init=False)
-    popen: subprocess.Popen[bytes] | None = None
-    pidfd: int | None = None
-    streams: dict[int, Stream] = field(default_factory=dict)
-
-    def __post_init__(self) -> None:
-        self.lifecycle = lifecycle_of(self.spec)
+    def __init__(
+        self,
+        spec: ProcessSpec,
+        label: str,
+        index: int,
+        on_spawn: Callable[[int], None] = lambda _pgid: None,
+    ) -> None:
+        self.spec = spec
+        self.label = label
+        self.index = index
+        self.on_spawn = on_spawn
+        self.lifecycle = lifecycle_of(spec)
+        self.popen: subprocess.Popen[bytes] | None = None
+        self.pidfd: int | None = None
+        self.streams: dict[int, Stream] = {}
 
     @property
     def pid(self) -> int | None:
@@ -277,6 +285,18 @@ def check_program(spec: ProcessSpec) -> None:
         spec.location,
         expected="an executable file, or a program on the PATH",
     )
+
+
+def check_programs(specs: list[ProcessSpec]) -> None:
+    """:func:`check_program` for each spec, in order; a program already found with the same
+    folder and ``PATH`` is not looked up again (a PATH search is a dozen ``stat`` calls, and a
+    launch may start one program a hundred times)."""
+    found: set[tuple[str | None, str, str | None]] = set()
+    for spec in specs:
+        key = (spec.cwd, spec.cmd[0], spec.env.get("PATH"))
+        if key not in found:
+            check_program(spec)
+            found.add(key)
 
 
 def _open_gate(fd: int) -> None:

@@ -32,7 +32,6 @@ from launchkit.description.process_spec import ProcessSpec
 from launchkit.envvars import RUN_TMPDIR
 from launchkit.errors import LaunchkitError
 from launchkit.runtime.child_host import ChildHostMixin
-from launchkit.runtime.child_requests import ChildRequests
 from launchkit.runtime.cleanup import LaunchCleanup
 from launchkit.runtime.hooks import SupervisorHooks
 from launchkit.runtime.launch_events import EventRelay
@@ -43,7 +42,7 @@ from launchkit.runtime.process import (
     ProcessFactory,
     SupervisedProcess,
     by_machine,
-    check_program,
+    check_programs,
 )
 from launchkit.runtime.process_io import POLL_INTERVAL, ProcessIO
 from launchkit.runtime.process_report import ProcessReport
@@ -58,6 +57,7 @@ from launchkit.runtime.timers import TimerQueue
 if TYPE_CHECKING:
     from launchkit.description.launch_context import DelayedActions, LaunchContext, Snapshot
     from launchkit.description.launch_description import LaunchDescription
+    from launchkit.runtime.child_requests import ChildRequests
     from launchkit.runtime.network import NodeNetwork
 
 
@@ -142,8 +142,8 @@ class Supervisor(ChildHostMixin):
         self._signals.install()
         self._selector.register(self._signals.fd, selectors.EVENT_READ, self._read_signals)
         try:
-            self._open_folder(context)
-            self._open_requests()
+            context.scratch_root = self._folder
+            context.child_groups = self._cleanup
             self._first_pass(description, context)
             self.hooks.launch_ready()
             self._relay.drain(self.fail)
@@ -153,15 +153,21 @@ class Supervisor(ChildHostMixin):
             self.close()
         return self.exit_code
 
-    def _open_folder(self, context: LaunchContext) -> None:
-        folder = self._cleanup.open_folder()
-        context.scratch_root = Path(folder)
-        context.child_groups = self._cleanup
+    def _folder(self) -> Path:
+        """The launch's private run folder, with the child-request socket in it: made when the
+        first process starts or the first generated file is written (a launch that starts
+        nothing spawns no orphan guard and opens no socket)."""
+        folder = self._cleanup.folder
+        if folder is None:
+            folder = self._cleanup.open_folder()
+            self._open_requests(folder)
+        return Path(folder)
 
-    def _open_requests(self) -> None:
-        assert self._cleanup.folder is not None
+    def _open_requests(self, folder: str) -> None:
+        from launchkit.runtime.child_requests import ChildRequests  # json, socket, struct
+
         try:
-            self._requests = ChildRequests(self, self._selector, self._cleanup.folder)
+            self._requests = ChildRequests(self, self._selector, folder)
         except OSError as error:
             self.log(
                 "WARNING",
@@ -188,9 +194,7 @@ class Supervisor(ChildHostMixin):
         self._read_signals()
         if self.shutting_down:
             return
-        for spec in pending:
-            if not spec.machine:  # another host's programs are its agent's to find
-                check_program(spec)
+        check_programs([s for s in pending if not s.machine])  # another host's: its agent's
         for spec in pending:
             if self.shutting_down:
                 break
@@ -271,10 +275,10 @@ class Supervisor(ChildHostMixin):
         self._spawn(process)
 
     def _managed(self, spec: ProcessSpec) -> SupervisedProcess:
+        folder = self._folder()
         if self._requests is not None:
             spec.env.update(self._requests.environment())
-        if self._cleanup.folder is not None:
-            spec.env[RUN_TMPDIR] = self._cleanup.folder
+        spec.env[RUN_TMPDIR] = str(folder)
         index = len(self.processes) + 1
         return self._new_process(spec, f"{spec.name}-{index}", index)
 

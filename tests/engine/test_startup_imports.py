@@ -41,8 +41,17 @@ def loaded_by(*argv: str, prefixes: tuple[str, ...] = ()) -> list[str]:
 
 
 def test_running_an_xml_file_loads_no_yaml_ros_or_simulation(tmp_path: Path) -> None:
+    # nor lxml: expat reads a plain file (launchkit/frontend/xml/expat_tree.py)
     launch = tmp_path / "empty.launch.xml"
     launch.write_text("<launch>\n  <executable cmd='true'/>\n</launch>\n")
+    assert loaded_by("run", str(launch)) == []
+
+
+def test_an_xml_file_expat_does_not_read_loads_lxml(tmp_path: Path) -> None:
+    launch = tmp_path / "entities.launch.xml"
+    launch.write_text(
+        '<!DOCTYPE launch [<!ENTITY e "v">]>\n<launch><let name="&e;" value="1"/></launch>\n'
+    )
     assert loaded_by("run", str(launch)) == ["lxml"]
 
 
@@ -50,6 +59,32 @@ def test_running_a_yaml_file_loads_no_lxml(tmp_path: Path) -> None:
     launch = tmp_path / "empty.launch.yaml"
     launch.write_text("launch:\n- executable: {cmd: 'true'}\n")
     assert loaded_by("run", str(launch)) == ["yaml"]
+
+
+def test_an_empty_launch_creates_no_dataclasses(tmp_path: Path) -> None:
+    # dataclasses imports inspect (ast, dis, tokenize) and compiles each class's methods at
+    # import: the modules every launch needs declare plain classes (launchkit._record). (lxml
+    # imports inspect too: a plain XML file is read with expat.)
+    xml = tmp_path / "empty.launch.xml"
+    xml.write_text("<launch/>\n")
+    assert loaded_by("run", str(xml), prefixes=("dataclasses", "inspect")) == []
+    yaml = tmp_path / "empty.launch.yaml"
+    yaml.write_text("launch: []\n")
+    assert loaded_by("run", str(yaml), prefixes=("dataclasses", "inspect")) == ["yaml"]
+
+
+def test_a_launch_that_starts_nothing_opens_no_socket_or_run_folder(tmp_path: Path) -> None:
+    # The private run folder (and the orphan guard told about it) and the child-request
+    # socket are made when the first process starts; $(anon) imports socket when used.
+    launch = tmp_path / "empty.launch.xml"
+    launch.write_text(
+        "<launch><let name='a' value='$(var b)'/><arg name='b' default='1'/></launch>\n"
+    )
+    unused = ("socket", "tempfile", "launchkit.runtime.child_requests")
+    assert loaded_by("run", str(launch), prefixes=unused) == []
+    started = tmp_path / "one.launch.xml"
+    started.write_text("<launch><executable cmd='true'/></launch>\n")
+    assert "launchkit.runtime.child_requests" in loaded_by("run", str(started), prefixes=unused)
 
 
 def description_modules(tmp_path: Path, text: str) -> set[str]:

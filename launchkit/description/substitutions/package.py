@@ -2,7 +2,6 @@
 
 from __future__ import annotations
 
-import shlex
 from typing import TYPE_CHECKING
 
 from launchkit.description.substitutions.base import Call
@@ -60,6 +59,10 @@ class ExecInPkg(Call):
         """The executable's path, or an error naming what is missing."""
         try:
             argv = context.packages.executable(self.arg(1, context), self.arg(0, context))
-            return argv[0] if len(argv) == 1 else shlex.join(argv)
+            if len(argv) == 1:
+                return argv[0]
+            import shlex  # only for an executable run by an interpreter
+
+            return shlex.join(argv)
         except PackageNotFoundError as error:
             raise error.with_location(self.location) if self.location else error from None

@@ -1,18 +1,24 @@
 """One XML element as the tag parsers see it: attributes with the line and column they were
-written at (lxml gives the line; the column is found in the source text)."""
+written at (expat or lxml gives the line; the column is found in the source text)."""
 
 from __future__ import annotations
 
 import bisect
 import functools
 import re
-from dataclasses import dataclass, field
 from pathlib import Path
-
-from lxml import etree
+from typing import TYPE_CHECKING
 
 from launchkit.errors import Location
 from launchkit.frontend.base_entity import Entity
+
+if TYPE_CHECKING:
+    from lxml import etree
+
+    from launchkit.frontend.xml.expat_tree import Element
+
+    #: An element as expat (a plain file) or lxml (any other) read it.
+    AnyElement = Element | etree._Element
 
 
 @functools.lru_cache(maxsize=256)
@@ -21,16 +27,13 @@ def _attribute_pattern(name: str) -> re.Pattern[str]:
     return re.compile(r"\s" + re.escape(name) + r"\s*=\s*([\"'])")
 
 
-@dataclass
 class SourceFile:
     """A launch file's path and text (for columns in error messages)."""
 
-    path: Path
-    text: str
-    _line_starts: list[int] = field(default_factory=list)
-
-    def __post_init__(self) -> None:
-        self._line_starts = [0] + [m.end() for m in re.finditer("\n", self.text)]
+    def __init__(self, path: Path, text: str) -> None:
+        self.path = path
+        self.text = text
+        self._line_starts = [0] + [m.end() for m in re.finditer("\n", text)]
 
     def offset(self, line: int) -> int:
         """Character offset where 1-based ``line`` starts."""
@@ -50,7 +53,7 @@ class SourceFile:
 class XmlEntity(Entity):
     """An element of an XML launch file."""
 
-    def __init__(self, element: etree._Element, source: SourceFile) -> None:
+    def __init__(self, element: AnyElement, source: SourceFile) -> None:
         super().__init__(str(element.tag))
         self.element = element
         self.source = source
@@ -60,7 +63,8 @@ class XmlEntity(Entity):
     def _find_start(self) -> int:
         sourceline: int | None = self.element.sourceline  # type: ignore[assignment]
         line = sourceline or 1
-        # lxml reports the line where the start tag ends; search back a little for "<tag".
+        # lxml reports the line where the start tag ends (expat where it begins); search back
+        # a little for "<tag".
         text = self.source.text
         search_from = self.source.offset(max(1, line - 20))
         end = self.source.offset(line + 1) if line < len(self.source._line_starts) else len(text)

@@ -1,17 +1,21 @@
-"""Parse XML launch files (lxml keeps line numbers) into :class:`LaunchDescription`s."""
+"""Parse XML launch files into :class:`LaunchDescription`s: a plain file with expat
+(:mod:`launchkit.frontend.xml.expat_tree`), any other with lxml (both keep line numbers)."""
 
 from __future__ import annotations
 
 import re
 import stat
 from pathlib import Path
-
-from lxml import etree
+from typing import TYPE_CHECKING
 
 from launchkit.description.launch_description import LaunchDescription
 from launchkit.errors import LaunchFileError, Location
 from launchkit.frontend.action_parser import ActionParser
 from launchkit.frontend.xml.entity import SourceFile, XmlEntity
+from launchkit.frontend.xml.expat_tree import read_plain
+
+if TYPE_CHECKING:
+    from launchkit.frontend.xml.entity import AnyElement
 
 #: The largest launch file read (a generous bound: the largest real ones are under 100 kB).
 MAX_FILE_SIZE = 256 * 1024 * 1024
@@ -53,21 +57,9 @@ class XmlParser:
         """Parse launch XML ``data`` as if read from ``path``: in the encoding its declaration
         or byte order mark names (lxml reads it), else UTF-8; a byte that is not valid in
         that encoding is an error at its line and column."""
-        parser = etree.XMLParser(remove_comments=True, remove_pis=True, resolve_entities=False)
-        try:
-            root = etree.fromstring(data, parser)
-        except etree.XMLSyntaxError as error:
-            line, col = error.position
-            message = str(error.msg or error).split(", line ")[0]
-            undecodable = _undecodable(data, path) if "encod" in message.lower() else None
-            if undecodable is not None:
-                raise undecodable from None
-            raise LaunchFileError(
-                f"malformed XML: {message}",
-                Location(str(path), line, col),
-                expected="well-formed XML in the encoding it declares (UTF-8 if none)",
-            ) from None
-        source = SourceFile(path, _decoded(data, root.getroottree().docinfo.encoding))
+        plain = read_plain(data)
+        root, encoding = plain if plain is not None else _read_with_lxml(data, path)
+        source = SourceFile(path, _decoded(data, encoding))
         del data  # a large file: its bytes go before its actions are built
         entity = XmlEntity(root, source)
         if entity.tag != "launch":
@@ -77,6 +69,27 @@ class XmlParser:
         deprecated = entity.raw("deprecated")
         entity.assert_fully_read()
         return LaunchDescription(path, self.actions.parse_actions(entity), deprecated)
+
+
+def _read_with_lxml(data: bytes, path: Path) -> tuple[AnyElement, str | None]:
+    """The root element and encoding lxml reads; its error, located, for a malformed file."""
+    from lxml import etree  # with inspect, typing, gzip: only for a file expat does not read
+
+    parser = etree.XMLParser(remove_comments=True, remove_pis=True, resolve_entities=False)
+    try:
+        root = etree.fromstring(data, parser)
+    except etree.XMLSyntaxError as error:
+        line, col = error.position
+        message = str(error.msg or error).split(", line ")[0]
+        undecodable = _undecodable(data, path) if "encod" in message.lower() else None
+        if undecodable is not None:
+            raise undecodable from None
+        raise LaunchFileError(
+            f"malformed XML: {message}",
+            Location(str(path), line, col),
+            expected="well-formed XML in the encoding it declares (UTF-8 if none)",
+        ) from None
+    return root, root.getroottree().docinfo.encoding
 
 
 _DECLARED = re.compile(rb"""^\s*<\?xml[^>]*encoding\s*=\s*["']([A-Za-z0-9._-]+)["']""")
