@@ -83,6 +83,8 @@ def test_the_diff_drive_is_forked_from_the_pre_imported_server(launch: Any) -> N
     assert len(hosts) == 1, f"expected one plugin host under gzserver {server}: {hosts}"
     host = hosts[0]
     assert _stat(host)[1] == host
+    # One thread (no Zenoh session, no BLAS pool): forking it is safe.
+    assert len(os.listdir(f"/proc/{host}/task")) == 1
     # The launcher's process for the diff drive is a trampoline; the node writing its output
     # is the host's child, never exec'ed (it has the server's command line).
     trampoline = controller.pid

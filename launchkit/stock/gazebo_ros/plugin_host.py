@@ -4,10 +4,11 @@ already imported.
 
 A plugin node started cold pays 0.6-0.7 s of CPU (1-2 s of wall time on a busy 2-core machine)
 importing numpy, rosbags, building the message types and their codecs and the node API before
-it publishes anything; the server has paid all of that already. So the server, once it has
-imported and warmed what the plugin nodes use (:func:`preload`) and *before* it opens a Zenoh
-session (a process with Zenoh's threads running cannot be forked safely), forks this host.
-The host opens no session and starts no thread: it waits on a Unix socket.
+it publishes anything; the server pays most of that too. So the server, once it has imported
+what it needs anyway (:func:`preload`) and *before* it opens a Zenoh session (a process with
+Zenoh's threads running cannot be forked safely), forks this host. The host builds what only
+the plugin nodes use (:func:`warm_plugins`) while the server loads its world, opens no session,
+starts no thread, and waits on a Unix socket.
 
 Each plugin node is still a process the launcher (or, without one, the server) starts and
 supervises: :mod:`plugin_trampoline` is that process. It hands the host its command line, its
@@ -43,13 +44,12 @@ from launchkit.envvars import RUN_TMPDIR
 TRAMPOLINE = str(Path(__file__).with_name("plugin_trampoline.py"))
 #: The most a request (command line and environment) may hold, in bytes.
 MAX_REQUEST = 1 << 20
-#: The modules of the plugin nodes and the node API they use, imported before the fork.
+#: The modules of the plugin nodes, imported by the host.
 PLUGIN_MODULES = (
-    "launchkit.ros.node",
     "launchkit.stock.gazebo_ros.diff_drive_node",
     "launchkit.stock.gazebo_ros.camera_node",
 )
-#: The message types the plugin nodes publish and subscribe, warmed before the fork.
+#: The message types the plugin nodes publish and subscribe, their codecs built by the host.
 PLUGIN_MESSAGES = (
     ("nav_msgs", "Odometry"),
     ("sensor_msgs", "JointState"),
@@ -73,18 +73,26 @@ PARAMETER_SERVICES = tuple(
 
 
 def preload() -> None:
-    """Import and build what the plugin nodes need before they publish: their modules, the
-    node API, the message types, their codecs and the parameter services' types."""
-    for module in PLUGIN_MODULES:
-        importlib.import_module(module)
+    """Before the fork, in the server: import and build what the server needs anyway before
+    it loads its world (the node API, the message type store, the parameter services' types),
+    so that the host has it without paying for it again."""
     from launchkit.ros.msgs import get_service
+
+    importlib.import_module("launchkit.ros.node")
+    for service in PARAMETER_SERVICES:
+        get_service(service)
+
+
+def warm_plugins() -> None:
+    """After the fork, in the host (beside the server's world load): what only the plugin
+    nodes use, their modules and their message types' codecs."""
     from launchkit.ros.msgs._codec import codec
     from launchkit.stock.gazebo_ros import messages
 
+    for module in PLUGIN_MODULES:
+        importlib.import_module(module)
     for package, name in PLUGIN_MESSAGES:
         codec(messages.message_class(package, name).__msgtype__)
-    for service in PARAMETER_SERVICES:
-        get_service(service)
 
 
 @dataclass
@@ -155,6 +163,10 @@ class _Host:
         os.setsid()  # out of the server's process group: its signals are not for the host
         for signum in (signal.SIGINT, signal.SIGTERM, signal.SIGHUP):
             signal.signal(signum, signal.SIG_IGN)
+        try:
+            warm_plugins()
+        except Exception:  # the nodes then build it themselves; say why
+            traceback.print_exc()
         while self.listener is not None or self.nodes:
             watched: list[int] = [fd for fd, _ in self.nodes.values()]
             if self.listener is not None:
