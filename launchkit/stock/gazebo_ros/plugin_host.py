@@ -36,6 +36,7 @@ import sys
 import tempfile
 import threading
 import traceback
+from collections.abc import Callable
 from dataclasses import dataclass
 from pathlib import Path
 
@@ -106,9 +107,10 @@ class PluginHost:
     lifeline: int
 
     @classmethod
-    def fork(cls) -> PluginHost | None:
+    def fork(cls, log: Callable[[str], None]) -> PluginHost | None:
         """Fork the host from this process (which must not have opened a Zenoh session yet);
-        None where that cannot be done (no ``pidfd_open``), and the nodes start cold."""
+        None where that cannot be done (no ``pidfd_open``, no socket, no fork; ``log`` says
+        why), and the nodes start cold."""
         if not hasattr(os, "pidfd_open"):
             return None
         base = os.environ.get(RUN_TMPDIR)
@@ -117,12 +119,20 @@ class PluginHost:
         )
         path = os.path.join(folder, "host.sock")
         listener = socket.socket(socket.AF_UNIX, socket.SOCK_SEQPACKET)
-        listener.bind(path)
-        listener.listen(16)
         read_end, write_end = os.pipe()
-        for stream in (sys.stdout, sys.stderr):
-            stream.flush()  # or the child would write what is buffered a second time
-        pid = os.fork()
+        try:
+            listener.bind(path)
+            listener.listen(16)
+            for stream in (sys.stdout, sys.stderr):
+                stream.flush()  # or the child would write what is buffered a second time
+            pid = os.fork()
+        except OSError as error:
+            log(f"no plugin host ({error}): the plugin nodes start on their own")
+            for fd in (read_end, write_end):
+                os.close(fd)
+            listener.close()
+            shutil.rmtree(folder, ignore_errors=True)
+            return None
         if pid == 0:
             code = 1
             try:
@@ -226,7 +236,8 @@ class _Host:
             for fd in fds:
                 os.close(fd)
             conn.close()
-            for _, other in self.nodes.values():
+            for pidfd, other in self.nodes.values():
+                os.close(pidfd)
                 other.close()
             if self.listener is not None:
                 self.listener.close()

@@ -23,6 +23,7 @@ import faulthandler
 import importlib
 import os
 import signal
+import sys
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
@@ -348,7 +349,7 @@ def main(argv: list[str]) -> int:
         # The plugin host is forked before ros.init: before any Zenoh session (and its
         # threads) exists in this process.
         preload()
-        host = PluginHost.fork()
+        host = PluginHost.fork(lambda text: print(f"[gazebo] {text}", file=sys.stderr))
         ros.init(args=argv)
         server = SimServer(ros, options, host)
         signal.signal(signal.SIGTERM, _stop)
