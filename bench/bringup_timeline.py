@@ -6,7 +6,8 @@ Runs ``launchkit run robot_wheel gazebo_and_rviz.launch.xml start_rviz:=false`` 
 read line by line, and prints when (seconds since the command started) the launcher was ready,
 each process started, gzserver had its world, spawn_entity.py waited for and called
 ``/spawn_entity``, the diff drive was started and logged its first line, and the first /odom
-arrived (with its frame ids, stamp and position, which must be the spawn point's).
+arrived (with its frame ids, stamp and position, which must be the spawn point's), and the CPU
+time every process of the launch had used by then.
 ``--before DIR`` alternates runs with an older tree's ``launchkit`` package (as
 ``bench/user_waits.py --before``).
 """
@@ -86,6 +87,7 @@ def timeline(extra_env: dict[str, str]) -> list[tuple[float, str]]:
     deadline = time.monotonic() + 60
     while not got and time.monotonic() < deadline:
         ros.spin_once(node, timeout_sec=0.01)
+    cpu = tree_cpu(proc.pid)
     time.sleep(0.3)  # the lines written just before
     node.destroy_node()
     context.shutdown()
@@ -103,7 +105,35 @@ def timeline(extra_env: dict[str, str]) -> list[tuple[float, str]]:
             f"{s.sec + s.nanosec * 1e-9:.3f} s sim, at ({p.x:.3f}, {p.y:.3f}, {p.z:.3f})",
         )
     )
+    marks.append((at, f"CPU of every process of the launch by then: {cpu:.2f} s"))
     return sorted(marks)
+
+
+def tree_cpu(root: int) -> float:
+    """CPU seconds of ``root`` and every process under it, including the children they have
+    reaped (spawn_entity.py has exited by the first /odom)."""
+    parents: dict[int, int] = {}
+    cpu: dict[int, float] = {}
+    tick = os.sysconf("SC_CLK_TCK")
+    for entry in Path("/proc").iterdir():
+        if not entry.name.isdigit():
+            continue
+        try:
+            fields = (entry / "stat").read_text().rsplit(")", 1)[1].split()
+        except OSError:
+            continue
+        pid = int(entry.name)
+        parents[pid] = int(fields[1])
+        cpu[pid] = sum(int(f) for f in fields[11:15]) / tick  # utime stime cutime cstime
+
+    def under(pid: int) -> bool:
+        while pid > 1:
+            if pid == root:
+                return True
+            pid = parents.get(pid, 0)
+        return False
+
+    return sum(seconds for pid, seconds in cpu.items() if under(pid))
 
 
 def main() -> None:
