@@ -7,12 +7,14 @@ from __future__ import annotations
 
 import os
 import signal
+import subprocess
+import sys
 import time
 from pathlib import Path
 from typing import Any
 
 from launchkit.testing import in_order
-from launchkit.testing._deadline import Deadline
+from launchkit.testing._deadline import Deadline, scaled
 
 DRIVING = "driving 'my_robot'"  # the diff drive's first log line
 
@@ -92,6 +94,20 @@ def test_the_diff_drive_is_forked_from_the_pre_imported_server(launch: Any) -> N
     node = _node_of(trampoline, host)
     assert _cmdline(node) == _cmdline(server)
     assert _stat(node)[1] == node  # its own session, as a process the launcher starts
+
+    # A request that is not 'python -m MODULE ...' gets no node: the trampoline runs the
+    # command itself, and the host goes on serving.
+    tramp = _cmdline(trampoline)
+    script, socket_path = tramp[tramp.index("-S") + 1], tramp[tramp.index("-S") + 2]
+    plain = subprocess.run(
+        [sys.executable, "-I", "-S", script, socket_path, "/bin/echo", "run cold"],
+        capture_output=True,
+        text=True,
+        timeout=scaled(30),
+        check=False,
+    )
+    assert (plain.returncode, plain.stdout) == (0, "run cold\n"), plain
+    assert "Traceback" not in plain.stderr
 
     # The node killed: the trampoline ends the same way, and the launcher respawns it.
     os.kill(node, signal.SIGKILL)

@@ -39,6 +39,7 @@ import traceback
 from collections.abc import Callable
 from dataclasses import dataclass
 from pathlib import Path
+from typing import Any
 
 from launchkit.envvars import RUN_TMPDIR
 
@@ -201,7 +202,7 @@ class _Host:
             for level, kind, payload in ancillary:
                 if level == socket.SOL_SOCKET and kind == socket.SCM_RIGHTS:
                     fds.frombytes(payload[: len(payload) - len(payload) % fds.itemsize])
-            request = json.loads(data)
+            request = _checked(json.loads(data))
             trampoline = _peer_pid(conn)
             pid = os.fork()
             if pid == 0:
@@ -225,7 +226,7 @@ class _Host:
         conn.close()
 
     def _become_node(
-        self, request: dict[str, object], fds: list[int], trampoline: int, conn: socket.socket
+        self, request: dict[str, Any], fds: list[int], trampoline: int, conn: socket.socket
     ) -> None:
         """In the forked child: become the node the trampoline asked for; never returns."""
         code = 1
@@ -249,14 +250,10 @@ class _Host:
             for signum in (signal.SIGTERM, signal.SIGHUP, signal.SIGUSR1):
                 signal.signal(signum, signal.SIG_DFL)
             _die_with(trampoline)
-            os.chdir(str(request["cwd"]))
-            env = request["env"]
-            assert isinstance(env, dict)
+            os.chdir(request["cwd"])
             os.environ.clear()
-            os.environ.update({str(k): str(v) for k, v in env.items()})
-            argv = [str(a) for a in request["argv"]]  # type: ignore[attr-defined]
-            if len(argv) < 3 or argv[1] != "-m":
-                raise ValueError(f"expected 'python -m MODULE ...', got {argv[:3]}")
+            os.environ.update(request["env"])
+            argv = request["argv"]
             sys.argv = [argv[2], *argv[3:]]
             # As `python -m` does: the module runs as __main__ only (the host imported it
             # under its name; runpy warns about that copy).
@@ -272,6 +269,25 @@ class _Host:
                 with contextlib.suppress(OSError, ValueError):
                     stream.flush()
             os._exit(code)
+
+
+def _checked(request: Any) -> dict[str, Any]:
+    """``request`` if it is what a trampoline sends (else ValueError: no node is forked, and
+    the trampoline starts its command itself)."""
+    if not isinstance(request, dict):
+        raise ValueError("expected a JSON object")
+    argv, env, cwd = request.get("argv"), request.get("env"), request.get("cwd")
+    if not (
+        isinstance(cwd, str)
+        and isinstance(env, dict)
+        and all(isinstance(v, str) for v in env.values())
+        and isinstance(argv, list)
+        and all(isinstance(a, str) for a in argv)
+        and len(argv) >= 3
+        and argv[1] == "-m"
+    ):
+        raise ValueError("expected cwd, env and argv 'python -m MODULE ...'")
+    return request
 
 
 def _die_with(pid: int) -> None:
