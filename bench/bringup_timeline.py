@@ -105,26 +105,29 @@ def timeline(extra_env: dict[str, str]) -> list[tuple[float, str]]:
             f"{s.sec + s.nanosec * 1e-9:.3f} s sim, at ({p.x:.3f}, {p.y:.3f}, {p.z:.3f})",
         )
     )
-    marks.append((at, f"CPU of every process of the launch by then: {cpu:.2f} s"))
+    marks.append((at, f"CPU of every process of the launch by then: {cpu[0]:.2f} s: {cpu[1]}"))
     return sorted(marks)
 
 
-def tree_cpu(root: int) -> float:
+def tree_cpu(root: int) -> tuple[float, str]:
     """CPU seconds of ``root`` and every process under it, including the children they have
-    reaped (spawn_entity.py has exited by the first /odom)."""
+    reaped (spawn_entity.py has exited by the first /odom), and each process's share."""
     parents: dict[int, int] = {}
-    cpu: dict[int, float] = {}
+    cpu: dict[int, tuple[float, float]] = {}
+    commands: dict[int, str] = {}
     tick = os.sysconf("SC_CLK_TCK")
     for entry in Path("/proc").iterdir():
         if not entry.name.isdigit():
             continue
         try:
             fields = (entry / "stat").read_text().rsplit(")", 1)[1].split()
+            commands[int(entry.name)] = (entry / "cmdline").read_text()
         except OSError:
             continue
         pid = int(entry.name)
         parents[pid] = int(fields[1])
-        cpu[pid] = sum(int(f) for f in fields[11:15]) / tick  # utime stime cutime cstime
+        own = (int(fields[11]) + int(fields[12])) / tick  # utime stime
+        cpu[pid] = (own, (int(fields[13]) + int(fields[14])) / tick)  # cutime cstime
 
     def under(pid: int) -> bool:
         while pid > 1:
@@ -133,7 +136,26 @@ def tree_cpu(root: int) -> float:
             pid = parents.get(pid, 0)
         return False
 
-    return sum(seconds for pid, seconds in cpu.items() if under(pid))
+    def name(pid: int) -> str:
+        argv = commands[pid].split("\0")
+        if pid == root:
+            return "launcher"
+        if any(arg.endswith("plugin_trampoline.py") for arg in argv):
+            return "trampoline"
+        parts = argv[argv.index("-m") + 1].split(".") if "-m" in argv else [argv[0]]
+        module = parts[-2] if parts[-1] == "node" and len(parts) > 1 else parts[-1]
+        copies = 0  # a forked copy has its parent's command line
+        while commands.get(parents.get(pid, 0)) == commands[pid]:
+            pid, copies = parents[pid], copies + 1
+        return (module, "plugin host", "forked plugin node")[min(copies, 2)]
+
+    ours = sorted(pid for pid in cpu if under(pid))
+    total = sum(sum(cpu[pid]) for pid in ours)
+    shares = ", ".join(
+        f"{name(pid)} {cpu[pid][0]:.2f}" + (f" (+{cpu[pid][1]:.2f} reaped)" if cpu[pid][1] else "")
+        for pid in ours
+    )
+    return total, shares
 
 
 def main() -> None:
