@@ -112,7 +112,9 @@ class PluginHost:
         """Fork the host from this process (which must not have opened a Zenoh session yet);
         None where that cannot be done (no ``pidfd_open``, no socket, no fork; ``log`` says
         why), and the nodes start cold."""
-        if not hasattr(os, "pidfd_open"):
+        try:
+            os.close(os.pidfd_open(os.getpid()))  # Python 3.9+ on Linux 5.3+
+        except (AttributeError, OSError):
             return None
         base = os.environ.get(RUN_TMPDIR)
         folder = tempfile.mkdtemp(
@@ -203,11 +205,18 @@ class _Host:
                 if level == socket.SOL_SOCKET and kind == socket.SCM_RIGHTS:
                     fds.frombytes(payload[: len(payload) - len(payload) % fds.itemsize])
             request = _checked(json.loads(data))
+            if len(fds) != 3:
+                raise ValueError(f"expected stdin, stdout and stderr, got {len(fds)} descriptors")
             trampoline = _peer_pid(conn)
             pid = os.fork()
             if pid == 0:
                 self._become_node(request, list(fds), trampoline, conn)
-            pidfd = os.pidfd_open(pid)
+            try:
+                pidfd = os.pidfd_open(pid)
+            except OSError:
+                os.kill(pid, signal.SIGKILL)  # unwatched, it must not run beside a cold one
+                os.waitpid(pid, 0)
+                raise
         except (OSError, ValueError) as error:
             print(f"plugin host: cannot start a node: {error}", file=sys.stderr, flush=True)
             conn.close()
