@@ -114,7 +114,8 @@ class PluginHost:
         why), and the nodes start cold."""
         try:
             os.close(os.pidfd_open(os.getpid()))  # Python 3.9+ on Linux 5.3+
-        except (AttributeError, OSError):
+        except (AttributeError, OSError) as error:
+            log(f"no plugin host (no pidfd_open: {error}): the plugin nodes start on their own")
             return None
         base = os.environ.get(RUN_TMPDIR)
         folder = tempfile.mkdtemp(
