@@ -40,13 +40,21 @@ def free_port() -> int:
 class BringUp:
     """One robot launch on its own router, and a probe node of this process on its network."""
 
-    def __init__(self, *args: str) -> None:
+    def __init__(self, *args: str, env: dict[str, str] | None = None) -> None:
+        """Start the launch with ``args`` (``env``: variables to add, e.g. ``PYTHONPATH`` of
+        another tree; the launch then runs from the temporary folder, so that the current
+        folder cannot shadow that tree)."""
         import launchkit.ros as ros
 
         self.ros = ros
         self.router = f"tcp/127.0.0.1:{free_port()}"
         self.log_dir = tempfile.mkdtemp(prefix="bringup-")
-        env = {**os.environ, "LAUNCHKIT_ROUTER": self.router, "ROS_LOG_DIR": self.log_dir}
+        env = {
+            **os.environ,
+            **(env or {}),
+            "LAUNCHKIT_ROUTER": self.router,
+            "ROS_LOG_DIR": self.log_dir,
+        }
         self.started = time.perf_counter()
         self.proc = subprocess.Popen(
             [
@@ -65,6 +73,7 @@ class BringUp:
             stdout=subprocess.DEVNULL,
             stderr=subprocess.DEVNULL,
             start_new_session=True,
+            cwd=tempfile.gettempdir(),
         )
         # start_router=False: the launch hosts the router; the probe must not start one first
         self.context = ros.Context(router=self.router, start_router=False)

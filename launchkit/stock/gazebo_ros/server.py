@@ -23,6 +23,7 @@ import faulthandler
 import importlib
 import os
 import signal
+import sys
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
@@ -31,6 +32,7 @@ from launchkit.stock import _entry
 from launchkit.stock.gazebo_ros import messages
 from launchkit.stock.gazebo_ros._shutdown import shutdown_within
 from launchkit.stock.gazebo_ros.camera_node import CameraNodeParams
+from launchkit.stock.gazebo_ros.plugin_host import PluginHost, preload
 from launchkit.stock.gazebo_ros.plugin_processes import PluginProcesses
 from launchkit.stock.gazebo_ros.server_options import ServerOptions, UsageError, parse_server_args
 from launchkit.stock.gazebo_ros.sim.engine import Entity, Simulation, SimulationError
@@ -62,7 +64,7 @@ class _Spawned:
 class SimServer:
     """The node: owns the :class:`Simulation` from one thread and paces it."""
 
-    def __init__(self, ros: Any, options: ServerOptions) -> None:
+    def __init__(self, ros: Any, options: ServerOptions, host: PluginHost | None = None) -> None:
         self.ros = ros
         self.node = ros.Node("gazebo")
         self.logger = self.node.get_logger()
@@ -98,7 +100,7 @@ class SimServer:
         self.spawned: dict[str, _Spawned] = {}
         #: Topics where the implicit joint state streams pause: another node publishes there.
         self.yielded_topics: set[str] = set()
-        self.children = PluginProcesses(self.logger.info)
+        self.children = PluginProcesses(self.logger.info, host)
         self.sensor_qos = ros.QoSProfile(depth=5, reliability=ros.ReliabilityPolicy.RELIABLE)
         self.clock_pub = None
         if options.ros_init:
@@ -324,8 +326,8 @@ def main(argv: list[str]) -> int:
     except ModelError as exc:
         raise UsageError(str(exc)) from None
     ros = importlib.import_module("launchkit.ros")
-    ros.init(args=argv)
     server: SimServer | None = None
+    host: PluginHost | None = None
     stop_requested = False
 
     def _stop(_signum: int, _frame: object) -> None:
@@ -339,12 +341,17 @@ def main(argv: list[str]) -> int:
 
     # `kill -USR1 PID` prints every thread's stack: what a stuck server is doing.
     faulthandler.register(signal.SIGUSR1, all_threads=True)
-    # Installed before the (slow) world load, so an early Ctrl-C still ends cleanly, and again
-    # after it: creating the node installs the ROS layer's handlers over these.
+    # Installed before the (slow) imports and world load, so an early Ctrl-C still ends cleanly,
+    # and again after it: creating the node installs the ROS layer's handlers over these.
     signal.signal(signal.SIGTERM, _stop)
     signal.signal(signal.SIGINT, _stop)
     try:
-        server = SimServer(ros, options)
+        # The plugin host is forked before ros.init: before any Zenoh session (and its
+        # threads) exists in this process.
+        preload()
+        host = PluginHost.fork(lambda text: print(f"[gazebo] {text}", file=sys.stderr))
+        ros.init(args=argv)
+        server = SimServer(ros, options, host)
         signal.signal(signal.SIGTERM, _stop)
         signal.signal(signal.SIGINT, _stop)
         server.running = not stop_requested
@@ -354,6 +361,8 @@ def main(argv: list[str]) -> int:
     finally:
         if server is not None:
             server.close()
+        if host is not None:
+            host.close()
         shutdown_within(ros, 2.0, 0)
     return 0
 
