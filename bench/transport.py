@@ -16,6 +16,8 @@ attachment, Zenoh's put, the receiver's copy out of Zenoh, decoding, and the sub
 queue-and-dispatch to the callback; for a 100 B byte array, a 100 KB one and an 800x800 rgb8
 Image. Serialize and decode are also timed the way launchkit did them before its per-type
 codec (rosbags' Typestore.serialize_cdr + bytes(), deserialize_cdr on bytes), for comparison.
+First, the executor's hand-off alone: from ``put`` in one thread to a waiting spinner thread
+holding the item (median delay), with the executor's ``WorkQueue`` and with ``queue.Queue``.
 """
 
 from __future__ import annotations
@@ -29,6 +31,7 @@ import statistics
 import struct
 import subprocess
 import sys
+import threading
 import time
 from datetime import datetime, timezone
 from typing import Any
@@ -331,6 +334,44 @@ def _case_steps(ros: Any, node: Any, msg_type: Any, build: Any) -> dict[str, flo
     return rows
 
 
+def _hop_us(make_queue: Any, count: int = 2000) -> float:
+    """Median microseconds from ``put`` in one thread to ``get`` returning the item in a
+    thread that was waiting for it (the executor's hand-off), one item per 0.5 ms."""
+    work = make_queue()
+    delays: list[int] = []
+
+    def spinner() -> None:
+        while len(delays) < count:
+            item = work.get(0.5)
+            if item is not None:
+                delays.append(time.perf_counter_ns() - item[1][0])
+
+    thread = threading.Thread(target=spinner, daemon=True)
+    thread.start()
+    while thread.is_alive():
+        time.sleep(0.0005)
+        work.put((None, (time.perf_counter_ns(),)))
+    return statistics.median(delays) / 1000
+
+
+class _QueueHandOff:
+    """The executor's hand-off before this change: ``queue.Queue`` (a Condition's wait)."""
+
+    def __init__(self) -> None:
+        import queue
+
+        self._queue: Any = queue.Queue()
+        self.put = self._queue.put
+
+    def get(self, timeout: float) -> Any:
+        import queue
+
+        try:
+            return self._queue.get(timeout=timeout)
+        except queue.Empty:
+            return None
+
+
 def steps() -> None:
     """Print the cost of each step of the per-message path (see the module's docstring)."""
     import numpy as np
@@ -353,6 +394,13 @@ def steps() -> None:
         ),
     ]
     print(f"# per-message steps, {datetime.now(timezone.utc):%Y-%m-%d %H:%M} UTC, microseconds")
+    from launchkit.ros.executor import WorkQueue
+
+    for label, make in (
+        ("hand-off to a waiting spinner (WorkQueue)", WorkQueue),
+        ("  before: queue.Queue", _QueueHandOff),
+    ):
+        print(f"{'any message':24s} {label:44s} {_hop_us(make):10.1f}")
     for label, msg_type, build in cases:
         for step, value in _case_steps(ros, node, msg_type, build).items():
             print(f"{label:24s} {step:44s} {value:10.1f}")

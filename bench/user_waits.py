@@ -20,10 +20,10 @@ change on this shared machine hits both), and is printed with its ratio and the 
     TinyRenderer and EGL (bench/bringup.py's camera case).
 
 ``--before DIR`` (a folder holding an older ``launchkit`` package, e.g. from ``git archive``)
-adds that tree's ``launchkit run`` of the empty file and ``topic echo /odom --once`` to the same
-interleaved rounds, so before and after share the machine's load. Commands run from the
-temporary folder: ``python -m`` puts the current folder first on ``sys.path``, which from the
-repository would shadow ``--before``'s tree with this one.
+adds that tree's ``launchkit run`` of the empty file, ``topic echo /odom --once`` and pub/sub
+latency to the same interleaved rounds, so before and after share the machine's load. Commands
+run from the temporary folder: ``python -m`` puts the current folder first on ``sys.path``,
+which from the repository would shadow ``--before``'s tree with this one.
 
 Bytecode is written and used (PYTHONDONTWRITEBYTECODE is dropped for the children), as after
 ``pip install``. Each row says the machine's load average when it was measured.
@@ -230,17 +230,29 @@ def idle_cli_rows(runs: int) -> None:
 
 
 def latency_rows(rounds: int) -> None:
-    """p50 one-way latency of 100 B at 1 kHz, raw zenoh and launchkit.ros taking turns."""
+    """p50 one-way latency of 100 B at 1 kHz, raw zenoh and launchkit.ros taking turns (and
+    ``--before``'s launchkit.ros, in the same rounds)."""
     endpoint = free_endpoint()
     os.environ["LAUNCHKIT_ROUTER"] = endpoint
     from launchkit.ros.router import start_router
 
     router = start_router(endpoint)
-    raw, lk = [], []
+    raw, lk, old = [], [], []
     try:
         for _ in range(rounds):
             raw.append(transport.latency("raw", 100, 1000.0, 2000)[0])
             lk.append(transport.latency("lk", 100, 1000.0, 2000)[0])
+            if BEFORE is not None:
+                # transport.py's children inherit os.environ: its PYTHONPATH picks the tree
+                saved = os.environ.get("PYTHONPATH")
+                os.environ["PYTHONPATH"] = BEFORE["PYTHONPATH"]
+                try:
+                    old.append(transport.latency("lk", 100, 1000.0, 2000)[0])
+                finally:
+                    if saved is None:
+                        del os.environ["PYTHONPATH"]
+                    else:
+                        os.environ["PYTHONPATH"] = saved
     finally:
         router.close()
     r, k = statistics.median(raw), statistics.median(lk)
@@ -251,6 +263,26 @@ def latency_rows(rounds: int) -> None:
         f"{k / r:.2f}x",
         "<= 1.3x",
         k / r <= 1.3,
+    )
+    if old:
+        b = statistics.median(old)
+        row(
+            "  --before: pub/sub p50 latency",
+            f"{b:.0f} us",
+            f"raw zenoh {r:.0f} us",
+            f"{b / r:.2f}x",
+            "<= 1.3x",
+            b / r <= 1.3,
+        )
+    print(
+        "  per round (raw / after"
+        + (" / before" if old else "")
+        + ") us: "
+        + "; ".join(
+            " / ".join(f"{v:.0f}" for v in vals)
+            for vals in zip(raw, lk, *([old] if old else []), strict=True)
+        ),
+        flush=True,
     )
 
 
@@ -338,7 +370,7 @@ def main() -> None:
     if args.only in (None, "cli"):
         idle_cli_rows(args.runs)
     if args.only in (None, "latency"):
-        latency_rows(3)
+        latency_rows(max(3, args.runs))
     if args.only in (None, "robot"):
         bringup_rows(args.runs, args.bringups, args.camera_seconds)
     if args.only == "robot-cli":
