@@ -7,6 +7,9 @@ for launchkit.ros and raw zenoh in turn, measures
   * time to the first message: from the subscriber's process start, and from its
     ``init()``/``zenoh.open()``, while a publisher already sends at 1 kHz.
 Latency is the receiver's CLOCK_MONOTONIC minus the sender's (one clock, shared by processes).
+``--kind hop`` (a child role, and a third latency line of the full run) is raw zenoh whose
+callback only hands the bytes to the main thread through the executor's ``WorkQueue``: what
+rclpy's threading (callbacks in the spinning thread) costs with nothing else of the ROS layer.
 The last line is ``transport: p50 ratio R (launchkit/raw zenoh), throughput N msg/s,
 first message T ms`` (R for 100 B; N and T for launchkit.ros; T from init).
 
@@ -53,6 +56,12 @@ class _Transport:
 
     def __init__(self, kind: str) -> None:
         self.kind = kind
+        self.hop: Any = None
+        if kind == "hop":  # raw zenoh, its callback handing each sample to the main thread
+            from launchkit.ros.executor import WorkQueue
+
+            self.hop = WorkQueue()
+            kind = self.kind = "raw"
         if kind == "raw":
             import zenoh
 
@@ -79,7 +88,12 @@ class _Transport:
         return lambda data: pub.publish(msg_type(data=data))
 
     def subscribe(self, on_data: Any) -> None:
-        if self.kind == "raw":
+        if self.kind == "raw" and self.hop is not None:
+            put = self.hop.put
+            self.session.declare_subscriber(
+                "bench/data", lambda s: put((on_data, (s.payload.to_bytes(),)))
+            )
+        elif self.kind == "raw":
             self.session.declare_subscriber("bench/data", lambda s: on_data(s.payload.to_bytes()))
         else:
             self.node.create_subscription(
@@ -89,7 +103,11 @@ class _Transport:
     def run_for(self, seconds: float, until: Any = None) -> None:
         deadline = time.monotonic() + seconds
         while time.monotonic() < deadline and not (until and until()):
-            if self.kind == "raw":
+            if self.hop is not None:
+                item = self.hop.get(0.01)
+                if item is not None:
+                    item[0](*item[1])
+            elif self.kind == "raw":
                 time.sleep(0.01)
             else:
                 self.ros.spin_once(self.node, timeout_sec=0.01)
@@ -410,7 +428,7 @@ def steps() -> None:
 def main() -> int:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--role", choices=["pub", "sub"])
-    parser.add_argument("--kind", choices=["raw", "lk"], default="lk")
+    parser.add_argument("--kind", choices=["raw", "hop", "lk"], default="lk")
     parser.add_argument("--size", type=int, default=100)
     parser.add_argument("--rate", type=float, default=1000.0)
     parser.add_argument("--count", type=int, default=0)
@@ -445,6 +463,10 @@ def main() -> int:
     print(f"# router {endpoint}; both sides are peers behind it (rmw_zenoh topology)")
     results: dict[str, dict[str, Any]] = {}
     try:
+        h50, h99, hn = latency("hop", 100, 1000.0, 3000 // scale)
+        print(
+            f"{'raw + hand-off':14s} 100 B  latency p50 {h50:8.1f} us  p99 {h99:8.1f} us  (n={hn})"
+        )
         for kind, label in (("raw", "raw zenoh"), ("lk", "launchkit.ros")):
             r: dict[str, Any] = {}
             r["small"] = latency(kind, 100, 1000.0, 3000 // scale)

@@ -13,7 +13,8 @@ change on this shared machine hits both), and is printed with its ratio and the 
     robot (the bring-up below), against ``python -c "import zenoh"``;
   * ``launchkit topic echo /odom --once`` beside the robot, against one /odom period;
   * pub/sub p50 latency of 100 B messages at 1 kHz, launchkit.ros against raw zenoh
-    (bench/transport.py's processes);
+    (bench/transport.py's processes), beside raw zenoh whose callback only hands the bytes to
+    the main thread through the executor's queue (the floor of rclpy's threading);
   * README line 1 (``launchkit run robot_wheel gazebo_and_rviz.launch.xml``, here with
     ``start_rviz:=false`` so runs do not fight over the viewer's port) to the first /odom;
   * the seed camera (800x800 at 30 Hz, paced at real time) subscribed: frames per wall second,
@@ -237,10 +238,11 @@ def latency_rows(rounds: int) -> None:
     from launchkit.ros.router import start_router
 
     router = start_router(endpoint)
-    raw, lk, old = [], [], []
+    raw, hop, lk, old = [], [], [], []
     try:
         for _ in range(rounds):
             raw.append(transport.latency("raw", 100, 1000.0, 2000)[0])
+            hop.append(transport.latency("hop", 100, 1000.0, 2000)[0])
             lk.append(transport.latency("lk", 100, 1000.0, 2000)[0])
             if BEFORE is not None:
                 # transport.py's children inherit os.environ: its PYTHONPATH picks the tree
@@ -264,6 +266,15 @@ def latency_rows(rounds: int) -> None:
         "<= 1.3x",
         k / r <= 1.3,
     )
+    h = statistics.median(hop)
+    row(
+        "  raw zenoh + the executor's hand-off alone",
+        f"{h:.0f} us",
+        f"raw zenoh {r:.0f} us",
+        f"{h / r:.2f}x",
+        "",
+        None,
+    )
     if old:
         b = statistics.median(old)
         row(
@@ -275,12 +286,12 @@ def latency_rows(rounds: int) -> None:
             b / r <= 1.3,
         )
     print(
-        "  per round (raw / after"
+        "  per round (raw / hand-off alone / after"
         + (" / before" if old else "")
         + ") us: "
         + "; ".join(
             " / ".join(f"{v:.0f}" for v in vals)
-            for vals in zip(raw, lk, *([old] if old else []), strict=True)
+            for vals in zip(raw, hop, lk, *([old] if old else []), strict=True)
         ),
         flush=True,
     )
