@@ -7,6 +7,9 @@ for launchkit.ros and raw zenoh in turn, measures
   * time to the first message: from the subscriber's process start, and from its
     ``init()``/``zenoh.open()``, while a publisher already sends at 1 kHz.
 Latency is the receiver's CLOCK_MONOTONIC minus the sender's (one clock, shared by processes).
+``--kind hop`` (a child role, and a third latency line of the full run) is raw zenoh whose
+callback only hands the bytes to the main thread through the executor's ``WorkQueue``: what
+rclpy's threading (callbacks in the spinning thread) costs with nothing else of the ROS layer.
 The last line is ``transport: p50 ratio R (launchkit/raw zenoh), throughput N msg/s,
 first message T ms`` (R for 100 B; N and T for launchkit.ros; T from init).
 
@@ -16,6 +19,8 @@ attachment, Zenoh's put, the receiver's copy out of Zenoh, decoding, and the sub
 queue-and-dispatch to the callback; for a 100 B byte array, a 100 KB one and an 800x800 rgb8
 Image. Serialize and decode are also timed the way launchkit did them before its per-type
 codec (rosbags' Typestore.serialize_cdr + bytes(), deserialize_cdr on bytes), for comparison.
+First, the executor's hand-off alone: from ``put`` in one thread to a waiting spinner thread
+holding the item (median delay), with the executor's ``WorkQueue`` and with ``queue.Queue``.
 """
 
 from __future__ import annotations
@@ -29,6 +34,7 @@ import statistics
 import struct
 import subprocess
 import sys
+import threading
 import time
 from datetime import datetime, timezone
 from typing import Any
@@ -50,6 +56,12 @@ class _Transport:
 
     def __init__(self, kind: str) -> None:
         self.kind = kind
+        self.hop: Any = None
+        if kind == "hop":  # raw zenoh, its callback handing each sample to the main thread
+            from launchkit.ros.executor import WorkQueue
+
+            self.hop = WorkQueue()
+            kind = self.kind = "raw"
         if kind == "raw":
             import zenoh
 
@@ -76,7 +88,12 @@ class _Transport:
         return lambda data: pub.publish(msg_type(data=data))
 
     def subscribe(self, on_data: Any) -> None:
-        if self.kind == "raw":
+        if self.kind == "raw" and self.hop is not None:
+            put = self.hop.put
+            self.session.declare_subscriber(
+                "bench/data", lambda s: put((on_data, (s.payload.to_bytes(),)))
+            )
+        elif self.kind == "raw":
             self.session.declare_subscriber("bench/data", lambda s: on_data(s.payload.to_bytes()))
         else:
             self.node.create_subscription(
@@ -86,7 +103,11 @@ class _Transport:
     def run_for(self, seconds: float, until: Any = None) -> None:
         deadline = time.monotonic() + seconds
         while time.monotonic() < deadline and not (until and until()):
-            if self.kind == "raw":
+            if self.hop is not None:
+                item = self.hop.get(0.01)
+                if item is not None:
+                    item[0](*item[1])
+            elif self.kind == "raw":
                 time.sleep(0.01)
             else:
                 self.ros.spin_once(self.node, timeout_sec=0.01)
@@ -331,6 +352,44 @@ def _case_steps(ros: Any, node: Any, msg_type: Any, build: Any) -> dict[str, flo
     return rows
 
 
+def _hop_us(make_queue: Any, count: int = 2000) -> float:
+    """Median microseconds from ``put`` in one thread to ``get`` returning the item in a
+    thread that was waiting for it (the executor's hand-off), one item per 0.5 ms."""
+    work = make_queue()
+    delays: list[int] = []
+
+    def spinner() -> None:
+        while len(delays) < count:
+            item = work.get(0.5)
+            if item is not None:
+                delays.append(time.perf_counter_ns() - item[1][0])
+
+    thread = threading.Thread(target=spinner, daemon=True)
+    thread.start()
+    while thread.is_alive():
+        time.sleep(0.0005)
+        work.put((None, (time.perf_counter_ns(),)))
+    return statistics.median(delays) / 1000
+
+
+class _QueueHandOff:
+    """The executor's hand-off before this change: ``queue.Queue`` (a Condition's wait)."""
+
+    def __init__(self) -> None:
+        import queue
+
+        self._queue: Any = queue.Queue()
+        self.put = self._queue.put
+
+    def get(self, timeout: float) -> Any:
+        import queue
+
+        try:
+            return self._queue.get(timeout=timeout)
+        except queue.Empty:
+            return None
+
+
 def steps() -> None:
     """Print the cost of each step of the per-message path (see the module's docstring)."""
     import numpy as np
@@ -353,6 +412,13 @@ def steps() -> None:
         ),
     ]
     print(f"# per-message steps, {datetime.now(timezone.utc):%Y-%m-%d %H:%M} UTC, microseconds")
+    from launchkit.ros.executor import WorkQueue
+
+    for label, make in (
+        ("hand-off to a waiting spinner (WorkQueue)", WorkQueue),
+        ("  before: queue.Queue", _QueueHandOff),
+    ):
+        print(f"{'any message':24s} {label:44s} {_hop_us(make):10.1f}")
     for label, msg_type, build in cases:
         for step, value in _case_steps(ros, node, msg_type, build).items():
             print(f"{label:24s} {step:44s} {value:10.1f}")
@@ -362,7 +428,7 @@ def steps() -> None:
 def main() -> int:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--role", choices=["pub", "sub"])
-    parser.add_argument("--kind", choices=["raw", "lk"], default="lk")
+    parser.add_argument("--kind", choices=["raw", "hop", "lk"], default="lk")
     parser.add_argument("--size", type=int, default=100)
     parser.add_argument("--rate", type=float, default=1000.0)
     parser.add_argument("--count", type=int, default=0)
@@ -397,6 +463,10 @@ def main() -> int:
     print(f"# router {endpoint}; both sides are peers behind it (rmw_zenoh topology)")
     results: dict[str, dict[str, Any]] = {}
     try:
+        h50, h99, hn = latency("hop", 100, 1000.0, 3000 // scale)
+        print(
+            f"{'raw + hand-off':14s} 100 B  latency p50 {h50:8.1f} us  p99 {h99:8.1f} us  (n={hn})"
+        )
         for kind, label in (("raw", "raw zenoh"), ("lk", "launchkit.ros")):
             r: dict[str, Any] = {}
             r["small"] = latency(kind, 100, 1000.0, 3000 // scale)

@@ -13,18 +13,19 @@ change on this shared machine hits both), and is printed with its ratio and the 
     robot (the bring-up below), against ``python -c "import zenoh"``;
   * ``launchkit topic echo /odom --once`` beside the robot, against one /odom period;
   * pub/sub p50 latency of 100 B messages at 1 kHz, launchkit.ros against raw zenoh
-    (bench/transport.py's processes);
+    (bench/transport.py's processes), beside raw zenoh whose callback only hands the bytes to
+    the main thread through the executor's queue (the floor of rclpy's threading);
   * README line 1 (``launchkit run robot_wheel gazebo_and_rviz.launch.xml``, here with
     ``start_rviz:=false`` so runs do not fight over the viewer's port) to the first /odom;
   * the seed camera (800x800 at 30 Hz, paced at real time) subscribed: frames per wall second,
     TinyRenderer and EGL (bench/bringup.py's camera case).
 
 ``--before DIR`` (a folder holding an older ``launchkit`` package, e.g. from ``git archive``)
-adds that tree's ``launchkit run`` of the empty file and of the 100 ``echo`` and ``topic echo
-/odom --once`` to the same interleaved rounds, so before and after share the machine's load;
-``--only odom`` alternates bring-ups of the two trees to the first /odom (and nothing else).
-Commands run from the temporary folder: ``python -m`` puts the current folder first on
-``sys.path``, which from the repository would shadow ``--before``'s tree with this one.
+adds that tree's ``launchkit run`` of the empty file and of the 100 ``echo``, ``topic echo
+/odom --once`` and pub/sub latency to the same interleaved rounds, so before and after share the
+machine's load; ``--only odom`` alternates bring-ups of the two trees to the first /odom (and
+nothing else). Commands run from the temporary folder: ``python -m`` puts the current folder
+first on ``sys.path``, which from the repository would shadow ``--before``'s tree with this one.
 
 Bytecode is written and used (PYTHONDONTWRITEBYTECODE is dropped for the children), as after
 ``pip install``. The message definitions' cache (``LAUNCHKIT_CACHE_DIR``) is a temporary folder
@@ -245,17 +246,30 @@ def idle_cli_rows(runs: int) -> None:
 
 
 def latency_rows(rounds: int) -> None:
-    """p50 one-way latency of 100 B at 1 kHz, raw zenoh and launchkit.ros taking turns."""
+    """p50 one-way latency of 100 B at 1 kHz, raw zenoh and launchkit.ros taking turns (and
+    ``--before``'s launchkit.ros, in the same rounds)."""
     endpoint = free_endpoint()
     os.environ["LAUNCHKIT_ROUTER"] = endpoint
     from launchkit.ros.router import start_router
 
     router = start_router(endpoint)
-    raw, lk = [], []
+    raw, hop, lk, old = [], [], [], []
     try:
         for _ in range(rounds):
             raw.append(transport.latency("raw", 100, 1000.0, 2000)[0])
+            hop.append(transport.latency("hop", 100, 1000.0, 2000)[0])
             lk.append(transport.latency("lk", 100, 1000.0, 2000)[0])
+            if BEFORE is not None:
+                # transport.py's children inherit os.environ: its PYTHONPATH picks the tree
+                saved = os.environ.get("PYTHONPATH")
+                os.environ["PYTHONPATH"] = BEFORE["PYTHONPATH"]
+                try:
+                    old.append(transport.latency("lk", 100, 1000.0, 2000)[0])
+                finally:
+                    if saved is None:
+                        del os.environ["PYTHONPATH"]
+                    else:
+                        os.environ["PYTHONPATH"] = saved
     finally:
         router.close()
     r, k = statistics.median(raw), statistics.median(lk)
@@ -266,6 +280,35 @@ def latency_rows(rounds: int) -> None:
         f"{k / r:.2f}x",
         "<= 1.3x",
         k / r <= 1.3,
+    )
+    h = statistics.median(hop)
+    row(
+        "  raw zenoh + the executor's hand-off alone",
+        f"{h:.0f} us",
+        f"raw zenoh {r:.0f} us",
+        f"{h / r:.2f}x",
+        "",
+        None,
+    )
+    if old:
+        b = statistics.median(old)
+        row(
+            "  --before: pub/sub p50 latency",
+            f"{b:.0f} us",
+            f"raw zenoh {r:.0f} us",
+            f"{b / r:.2f}x",
+            "<= 1.3x",
+            b / r <= 1.3,
+        )
+    print(
+        "  per round (raw / hand-off alone / after"
+        + (" / before" if old else "")
+        + ") us: "
+        + "; ".join(
+            " / ".join(f"{v:.0f}" for v in vals)
+            for vals in zip(raw, hop, lk, *([old] if old else []), strict=True)
+        ),
+        flush=True,
     )
 
 
@@ -395,7 +438,7 @@ def measure(args: argparse.Namespace) -> None:
     if args.only in (None, "cli"):
         idle_cli_rows(args.runs)
     if args.only in (None, "latency"):
-        latency_rows(3)
+        latency_rows(max(3, args.runs))
     if args.only in (None, "robot"):
         bringup_rows(args.runs, args.bringups, args.camera_seconds)
     if args.only == "odom":

@@ -6,8 +6,9 @@ thread takes work from the queue and runs due timers, so user callbacks never ru
 
 from __future__ import annotations
 
-import queue
+import threading
 import time
+from collections import deque
 from collections.abc import Callable, Sequence
 from typing import TYPE_CHECKING, Any, Protocol
 
@@ -30,28 +31,66 @@ class ExternalShutdownException(Exception):
 
 
 class WorkQueue:
-    """The queue zenoh threads fill and the spinning thread drains."""
+    """The queue zenoh threads fill and the spinning thread drains.
+
+    A deque (``append`` and ``popleft`` are atomic) and a lock used as a binary semaphore: a
+    producer releases it only when a spinner is waiting, so a message that finds the spinner
+    busy costs one append, and one that finds it idle an append and one release. Its cost
+    is the thread hop itself, not a Condition's lock juggling (``queue.Queue``). Signal-safe:
+    ``put`` and ``wake`` take no lock a spinner could hold, so a signal handler in the spinning
+    thread (``Context.interrupt``) can call them; ``Lock.acquire`` keeps its deadline when a
+    signal interrupts it (``SimpleQueue.get`` does not on CPython < 3.12: it can then block
+    forever, and the node never sees its shutdown).
+    """
 
     def __init__(self) -> None:
-        # Not SimpleQueue: in CPython < 3.12 its get(timeout) can block forever once a signal
-        # interrupts the wait after the deadline (the remaining time goes negative, which the
-        # lock takes as "no timeout"); the node then never sees its shutdown. queue.Queue
-        # waits on a Condition, which keeps the deadline.
-        self._queue: queue.Queue[Work] = queue.Queue()
-        self.put = self._queue.put
+        self._items: deque[Work] = deque()
+        self._signal = threading.Lock()
+        self._signal.acquire()  # held: no wake-up pending; released: a spinner may go on
+        self._waiting = 0  # spinners inside get()'s wait (written under _count)
+        self._count = threading.Lock()
+
+    def put(self, item: Work) -> None:
+        """Queue ``item`` (any thread, or a signal handler) and wake a waiting spinner."""
+        self._items.append(item)
+        # the spinner announces itself before its last look at the deque, and this reads the
+        # flag after appending: one of the two sees the other (the GIL orders them)
+        if self._waiting:
+            try:
+                self._signal.release()
+            except RuntimeError:  # released already: a wake-up is pending
+                pass
 
     def get(self, timeout: float | None) -> Work | None:
         """The next work item, or None after ``timeout`` seconds (0 polls)."""
-        try:
-            if timeout is not None and timeout <= 0:
-                return self._queue.get_nowait()
-            return self._queue.get(timeout=timeout)
-        except queue.Empty:
+        items = self._items
+        if items:
+            return items.popleft()
+        if timeout is not None and timeout <= 0:
             return None
+        deadline = None if timeout is None else time.monotonic() + timeout
+        with self._count:
+            self._waiting += 1
+        try:
+            while True:
+                if items:
+                    return items.popleft()
+                if deadline is None:
+                    self._signal.acquire()
+                    continue
+                remaining = deadline - time.monotonic()
+                if remaining <= 0:
+                    return None
+                # a stale release (its item taken by the look above) makes this return at
+                # once: the loop looks again and waits for the rest of the time
+                self._signal.acquire(timeout=remaining)
+        finally:
+            with self._count:
+                self._waiting -= 1
 
     def wake(self) -> None:
         """Make a blocked ``get`` return."""
-        self._queue.put(_WAKE)
+        self.put(_WAKE)
 
 
 class ExecutableNode(Protocol):

@@ -225,6 +225,7 @@ class Subscription(_Entity):
         self._queue_lock = threading.Lock()
         self._depth = None if qos.history == HistoryPolicy.KEEP_ALL else qos.effective_depth
         self._scheduled = False  # a take is waiting in the node's work queue
+        self._take_work = (self._take, ())  # built once: posted for every message
         self.dropped = 0  # messages pushed out of a full queue (launchkit extension)
         session = node.context.session
         reliable = qos.reliability == ReliabilityPolicy.RELIABLE
@@ -251,13 +252,18 @@ class Subscription(_Entity):
         return self.topic_name
 
     def _on_sample(self, sample: zenoh.Sample) -> None:
-        # zenoh's thread: copy out, queue, and have the spinning thread take it
-        attachment = sample.attachment
-        item = (
-            sample.payload.to_bytes(),
-            None if attachment is None else attachment.to_bytes(),
-            time.time_ns(),
-        )
+        # zenoh's thread: copy out, queue, and have the spinning thread take it; the
+        # attachment and reception time only matter to a callback that takes message_info
+        item: tuple[bytes, bytes | None, int]
+        if self._with_info:
+            attachment = sample.attachment
+            item = (
+                sample.payload.to_bytes(),
+                None if attachment is None else attachment.to_bytes(),
+                time.time_ns(),
+            )
+        else:
+            item = (sample.payload.to_bytes(), None, 0)
         with self._queue_lock:
             if self._depth is not None and len(self._queue) >= self._depth:
                 self._queue.popleft()
@@ -266,7 +272,7 @@ class Subscription(_Entity):
             if self._scheduled:
                 return
             self._scheduled = True
-        self.node.post((self._take, ()))
+        self.node.post(self._take_work)
 
     def _take(self) -> None:
         """The spinning thread: deliver the oldest queued message (and come back for the
@@ -276,9 +282,9 @@ class Subscription(_Entity):
                 self._scheduled = False
                 return
             item = self._queue.popleft()
-            self._scheduled = bool(self._queue)
-        if self._scheduled:
-            self.node.post((self._take, ()))
+            self._scheduled = more = bool(self._queue)
+        if more:
+            self.node.post(self._take_work)
         self._deliver(*item)
 
     def _deliver(self, payload: bytes, attachment: bytes | None, received: int = 0) -> None:
