@@ -112,7 +112,7 @@ def dry_run(
     would start is recorded (timers' actions at once); errors are raised as ``run`` raises
     them. ``bridge`` adds ``launchkit bridge`` as ``run(bridge=True)`` does."""
     from launchkit.runtime.recorder import Recorder
-    from launchkit.runtime.signals import raising
+    from launchkit.runtime.signals import held, raising
 
     arguments = dict(arguments or {})
     packages, loader = PackageIndex(), LaunchLoader()
@@ -124,6 +124,7 @@ def dry_run(
     recorder = Recorder()
     context = _context(recorder, arguments, packages, loader, None)
     recorder.context = context
+    context.uninterrupted = held
     try:
         with raising(), context.in_file(tree.top.path), collector_paused():
             for action in tree.top.actions:

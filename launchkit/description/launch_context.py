@@ -15,7 +15,7 @@ from __future__ import annotations
 import os
 from collections import deque
 from collections.abc import Callable, Iterator, Sequence
-from contextlib import contextmanager
+from contextlib import AbstractContextManager, contextmanager, nullcontext
 from pathlib import Path
 from typing import TYPE_CHECKING, Any, Protocol
 
@@ -218,6 +218,10 @@ class LaunchContext:
         self._ros: RosLink | None = None
         #: set by the supervisor: told about every ``$(command)``'s process group
         self.child_groups: ChildGroups | None = None
+        #: set by whoever makes signals interrupt evaluation (the supervisor, ``--print``): a
+        #: body a signal must not cut in half (a ``$(command)`` being started and watched);
+        #: a signal arriving in it is raised at its end instead
+        self.uninterrupted: Callable[[], AbstractContextManager[None]] = nullcontext
         #: set by the supervisor: makes (on the first call) the private folder generated files
         #: go in (removed even when the launcher is killed); None: the system's temporary folder
         self.scratch_root: Callable[[], Path] | None = None

@@ -41,7 +41,8 @@ def exit_status(signum: int) -> int:
 def raising() -> Iterator[None]:
     """Within the body, each of :data:`HANDLED_SIGNALS` raises :class:`Interrupted` (for work
     without a supervisor loop, such as ``--print``: a ``$(command)`` it runs is then killed
-    rather than orphaned by SIGTERM's default action). Main thread only."""
+    rather than orphaned by SIGTERM's default action), except inside :func:`held`, where it
+    is raised at that body's end. Main thread only."""
     previous = {signum: signal.signal(signum, _raise) for signum in HANDLED_SIGNALS}
     try:
         yield
@@ -50,7 +51,34 @@ def raising() -> Iterator[None]:
             signal.signal(signum, handler)
 
 
+class _Held:
+    """Whether :func:`held` is in force, and the first signal it held back."""
+
+    active = False
+    signum: int | None = None
+
+
+@contextmanager
+def held() -> Iterator[None]:
+    """Within :func:`raising`, a body that must not be cut in half (a ``$(command)`` being
+    started): a signal arriving in it raises :class:`Interrupted` at its end instead."""
+    if _Held.active:
+        yield
+        return
+    _Held.active = True
+    try:
+        yield
+    finally:
+        _Held.active = False
+        signum, _Held.signum = _Held.signum, None
+    if signum is not None:
+        raise Interrupted(signum)
+
+
 def _raise(signum: int, frame: object) -> None:
+    if _Held.active:
+        _Held.signum = _Held.signum or signum
+        return
     raise Interrupted(signum)
 
 

@@ -144,6 +144,7 @@ class Supervisor(ChildHostMixin):
         try:
             context.scratch_root = self._folder
             context.child_groups = self._cleanup
+            context.uninterrupted = self._signals.deferred
             self._first_pass(description, context)
             self.hooks.launch_ready()
             self._relay.drain(self.fail)

@@ -94,35 +94,43 @@ class Command(Call):
 def _run(argv: list[str], context: LaunchContext) -> tuple[int | None, bytes, bytes]:
     """Run ``argv`` in its own session; its exit code (None: stopped for writing too much),
     stdout and stderr. Whatever interrupts the wait kills its group first."""
-    process = subprocess.Popen(
-        argv,
-        stdin=subprocess.DEVNULL,
-        stdout=subprocess.PIPE,
-        stderr=subprocess.PIPE,
-        env=dict(context.environment),
-        start_new_session=True,
-    )
     groups = context.child_groups
-    if groups is not None:
-        groups.watch(process.pid)
-    code: int | None = None
+    process: subprocess.Popen[bytes] | None = None
+    out = err = b""
+    complete = False
+    returncode = 0
     try:
+        # A signal raised inside Popen (after the fork) would lose the child: it is held
+        # until the child is known here and to the orphan guard, then raised below.
+        with context.uninterrupted():
+            process = subprocess.Popen(
+                argv,
+                stdin=subprocess.DEVNULL,
+                stdout=subprocess.PIPE,
+                stderr=subprocess.PIPE,
+                env=dict(context.environment),
+                start_new_session=True,
+            )
+            if groups is not None:
+                groups.watch(process.pid)
         out, err, complete = _collect(process)
         if complete:
             # wait without reaping: while the leader is a zombie, its group id cannot be reused
             # by another process, so killing what is left in the group is safe
             os.waitid(os.P_PID, process.pid, os.WEXITED | os.WNOWAIT)
     finally:
-        _kill_group(process.pid)
-        returncode = process.wait()
-    if complete:
-        code = returncode
-        for stream in (process.stdout, process.stderr):
-            if stream is not None:
-                stream.close()
-        if groups is not None:
-            groups.forget(process.pid)
-    return code, out, err
+        if process is not None:
+            _kill_group(process.pid)
+            returncode = process.wait()
+            for stream in (process.stdout, process.stderr):
+                if stream is not None:
+                    stream.close()
+    assert process is not None  # Popen raised otherwise
+    if not complete:
+        return None, out, err
+    if groups is not None:
+        groups.forget(process.pid)
+    return returncode, out, err
 
 
 def _collect(process: subprocess.Popen[bytes]) -> tuple[bytes, bytes, bool]:
