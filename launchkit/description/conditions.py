@@ -13,7 +13,7 @@ if TYPE_CHECKING:
     from launchkit.description.launch_context import LaunchContext
 
 
-@dataclass(frozen=True)
+@dataclass(frozen=True, slots=True)  # slots: a large file has one per guarded action
 class Condition:
     """``if="VALUE"`` (or ``unless`` when ``negate``), evaluated with the strict rule."""
 

@@ -2,8 +2,9 @@
 
 from __future__ import annotations
 
-import re
+import functools
 import stat
+from collections.abc import Callable, Iterator
 from pathlib import Path
 
 from lxml import etree
@@ -12,6 +13,14 @@ from launchkit.description.launch_description import LaunchDescription
 from launchkit.errors import LaunchFileError, Location
 from launchkit.frontend.action_parser import ActionParser
 from launchkit.frontend.xml.entity import SourceFile, XmlEntity
+from launchkit.frontend.xml.stream import (
+    CHUNK_SIZE,
+    DECLARED_ENCODING,
+    PARSER_OPTIONS,
+    ElementStream,
+    NotStreamable,
+    read_root,
+)
 
 #: The largest launch file read (a generous bound: the largest real ones are under 100 kB).
 MAX_FILE_SIZE = 256 * 1024 * 1024
@@ -39,7 +48,9 @@ class XmlParser:
                     included_from or Location(str(path)),
                     expected=f"a launch file of at most {MAX_FILE_SIZE} bytes",
                 )
-            return self.parse_bytes(path.read_bytes(), path)  # no name holds the bytes
+            with path.open("rb") as stream:
+                chunks = iter(functools.partial(stream.read, CHUNK_SIZE), b"")
+                return self._parse(chunks, path, path.read_bytes)
         except OSError as error:
             raise LaunchFileError(
                 f"cannot read '{path}': {error.strerror}", included_from
@@ -53,7 +64,28 @@ class XmlParser:
         """Parse launch XML ``data`` as if read from ``path``: in the encoding its declaration
         or byte order mark names (lxml reads it), else UTF-8; a byte that is not valid in
         that encoding is an error at its line and column."""
-        parser = etree.XMLParser(remove_comments=True, remove_pis=True, resolve_entities=False)
+        chunks = (data[start : start + CHUNK_SIZE] for start in range(0, len(data), CHUNK_SIZE))
+        return self._parse(chunks, path, lambda: data)
+
+    def _parse(
+        self, chunks: Iterator[bytes], path: Path, whole: Callable[[], bytes]
+    ) -> LaunchDescription:
+        """Parse the file as a stream; a file that is not well-formed, or whose encoding is
+        not one the stream reads (UTF-16, say), is read again whole (``whole()``), which
+        reports its error as it always has."""
+        stream = ElementStream(self.actions, path)
+        try:
+            for chunk in chunks:
+                stream.feed(chunk)
+            return stream.close()
+        except (etree.XMLSyntaxError, NotStreamable):
+            pass
+        return self.parse_whole(whole(), path)
+
+    def parse_whole(self, data: bytes, path: Path) -> LaunchDescription:
+        """Parse ``data`` as one tree (the stream's fallback): its errors name the line and
+        column, and an undecodable byte its offset."""
+        parser = etree.XMLParser(**PARSER_OPTIONS)
         try:
             root = etree.fromstring(data, parser)
         except etree.XMLSyntaxError as error:
@@ -70,16 +102,8 @@ class XmlParser:
         source = SourceFile(path, _decoded(data, root.getroottree().docinfo.encoding))
         del data  # a large file: its bytes go before its actions are built
         entity = XmlEntity(root, source)
-        if entity.tag != "launch":
-            raise entity.error(
-                f"the root element is <{entity.tag}>", expected="<launch> as the root element"
-            )
-        deprecated = entity.raw("deprecated")
-        entity.assert_fully_read()
+        deprecated = read_root(entity)
         return LaunchDescription(path, self.actions.parse_actions(entity), deprecated)
-
-
-_DECLARED = re.compile(rb"""^\s*<\?xml[^>]*encoding\s*=\s*["']([A-Za-z0-9._-]+)["']""")
 
 
 def _undecodable(data: bytes, path: Path) -> LaunchFileError | None:
@@ -87,7 +111,7 @@ def _undecodable(data: bytes, path: Path) -> LaunchFileError | None:
     line and column and byte offset; None when there is none (or a byte order mark rules)."""
     if data.startswith((b"\xff\xfe", b"\xfe\xff")):
         return None
-    declared = _DECLARED.match(data[:200])
+    declared = DECLARED_ENCODING.match(data[:200])
     encoding = declared.group(1).decode() if declared else "utf-8"
     try:
         data.decode(encoding)
