@@ -22,6 +22,7 @@ from launchkit.frontend.tags import standard_parser
 from launchkit.frontend.xml.entity import XmlEntity
 from launchkit.frontend.xml.parser import XmlParser
 from launchkit.frontend.xml.stream import CHUNK_SIZE
+from launchkit.safe_yaml import list_items
 
 ENTRIES = 20_000  # about 1.2 MB: several chunks
 
@@ -85,7 +86,7 @@ def test_the_location_of_an_action_far_in_the_file(tmp_path: Path) -> None:
 
 
 def test_a_syntax_error_after_a_bad_element_is_the_one_reported(tmp_path: Path) -> None:
-    lines = ['<nosuchtag/>'] + [f'<let name="v{i}" value="x"/>' for i in range(ENTRIES)]
+    lines = ["<nosuchtag/>"] + [f'<let name="v{i}" value="x"/>' for i in range(ENTRIES)]
     path = tmp_path / "broken.launch.xml"
     path.write_text("<launch>\n" + "".join(f"  {line}\n" for line in lines) + "  <let\n")
     with pytest.raises(LaunchFileError) as raised:
@@ -111,3 +112,34 @@ def test_a_utf16_file_is_read_whole_with_the_same_locations(tmp_path: Path) -> N
     with pytest.raises(LaunchFileError) as raised:
         LaunchLoader().load(path)
     assert str(raised.value.location).startswith(f"{path.resolve()}:3:")
+
+
+def test_yaml_actions_are_composed_one_at_a_time(tmp_path: Path) -> None:
+    # the file's end is malformed: composing it whole would fail before the first item
+    text = "launch:\n- let: {name: a, value: b}\n- let: {name: c, value: d}\n- let: {name: [\n"
+    items = list_items(text, tmp_path / "big.launch.yaml", "launch")
+    first = next(items)
+    assert first.kind == "map" and first.pairs[0][0].value == "let"
+    with pytest.raises(LaunchFileError, match="malformed YAML"):
+        list(items)
+
+
+def test_yaml_errors_keep_their_precedence(tmp_path: Path) -> None:
+    body = "".join(f"- let: {{name: v{i}, value: x}}\n" for i in range(ENTRIES))
+    early_bad = "launch:\n- nosuchtag: {}\n" + body
+    path = tmp_path / "bad.launch.yaml"
+    path.write_text(early_bad + "- let: {name: [\n")  # and malformed at the end
+    with pytest.raises(LaunchFileError, match="malformed YAML"):
+        LaunchLoader().load(path)
+    path.write_text(early_bad + "- let: {}\n  oops: {}\n")  # an item holding two tags
+    with pytest.raises(LaunchFileError) as raised:
+        LaunchLoader().load(path)
+    assert "holds several tags" in str(raised.value)  # as when the tree's entities came first
+    path.write_text(early_bad + "other: 1\n")  # a second top-level key
+    with pytest.raises(LaunchFileError, match="second top-level key"):
+        LaunchLoader().load(path)
+    path.write_text(early_bad)
+    with pytest.raises(LaunchFileError) as raised:
+        LaunchLoader().load(path)
+    assert str(raised.value.location) == f"{path.resolve()}:2:3"
+    assert "nosuchtag" in str(raised.value)
