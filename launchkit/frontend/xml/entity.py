@@ -23,8 +23,8 @@ _TAG_ENDS = frozenset([" ", "\t", "\n", "\r", "/", ">", ""])
 
 @functools.lru_cache(maxsize=256)
 def _attribute_pattern(name: str) -> re.Pattern[str]:
-    """Finds ``NAME = "`` in a start tag."""
-    return re.compile(r"\s" + re.escape(name) + r"\s*=\s*([\"'])")
+    """Finds ``NAME = "`` (starting with the name: a literal the search jumps to)."""
+    return re.compile(re.escape(name) + r"\s*=\s*([\"'])")
 
 
 class SourceFile:
@@ -122,10 +122,16 @@ class XmlEntity(Entity):
 
     def attribute_location(self, name: str) -> Location:
         """Where attribute ``name``'s value begins (after the quote)."""
-        match = _attribute_pattern(name).search(self.source.text, self._start)
-        if match is None:
-            return self.location
-        return self.source.location(match.end())
+        pattern = _attribute_pattern(name)
+        text = self.source.text
+        position = self._start
+        while True:  # the first NAME = " after a blank
+            match = pattern.search(text, position)
+            if match is None:
+                return self.location
+            if text[match.start() - 1].isspace():
+                return self.source.location(match.end())
+            position = match.start() + 1
 
     def attribute_names(self) -> list[str]:
         """The element's attribute names."""
