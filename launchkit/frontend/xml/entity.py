@@ -130,7 +130,10 @@ class XmlEntity(Entity):
             if match is None:
                 return self.location
             if text[match.start() - 1].isspace():
-                return self.source.location(match.end())
+                end = match.end()
+                if text.find("\n", self._start, end) < 0:  # on the start tag's first line
+                    return Location(self.source.file, self._line, self._col + end - self._start)
+                return self.source.location(end)
             position = match.start() + 1
 
     def attribute_names(self) -> list[str]:
