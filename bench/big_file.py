@@ -1,7 +1,7 @@
 """Benchmark: ``launchkit check`` of very large launch files (run by hand; results go in
 docs/benchmarks.md).
 
-    python bench/big_file.py [--entries 200000] [--repeat 3]
+    python bench/big_file.py [--entries 200000] [--repeat 3] [--before DIR]
 
 Writes, in a temporary folder, launch files of about 50 MB with ``--entries`` elements each and
 runs ``launchkit check`` on each under ``/usr/bin/time``, taking wall time, CPU time (user +
@@ -12,6 +12,12 @@ system: what the check costs, whatever else the machine is doing) and peak RSS. 
   checked and evaluated; the ``if`` keeps anything from being looked up on PATH);
 * ``lets``: ``<let name="vN" value="xxx..."/>`` (parsed and evaluated);
 * ``yaml lets``: the same in a YAML launch file.
+
+``--before DIR`` (a folder holding an older ``launchkit`` package, e.g. from ``git archive``)
+measures that tree's ``launchkit check`` too, taking turns with this one's on each file, so
+both share the machine's load. Commands run from the temporary folder: ``python -m`` puts the
+current folder first on ``sys.path``, which from the repository would shadow ``--before``'s
+tree with this one.
 
 Issue #17 asked for a 50 MB file to check in under 5 s and under 300 MB.
 """
@@ -56,13 +62,19 @@ def write_files(folder: Path, entries: int) -> dict[str, Path]:
     return files
 
 
-def measure(path: Path) -> tuple[float, float, float]:
-    """Wall seconds, CPU seconds and peak RSS (MB) of one ``launchkit check``."""
+def measure(path: Path, tree: Path | None = None) -> tuple[float, float, float]:
+    """Wall seconds, CPU seconds and peak RSS (MB) of one ``launchkit check``, of the
+    launchkit package in ``tree`` if given, else the installed one."""
+    env = dict(os.environ)
+    if tree is not None:
+        env["PYTHONPATH"] = str(tree.resolve())
     result = subprocess.run(
         ["/usr/bin/time", "-f", "%e %U %S %M", sys.executable, "-m", "launchkit", "check", path],
         capture_output=True,
         text=True,
         check=False,
+        env=env,
+        cwd=path.parent,
     )
     if result.returncode != 0:
         raise SystemExit(f"launchkit check {path} failed:\n{result.stderr}")
@@ -75,23 +87,31 @@ def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--entries", type=int, default=200_000)
     parser.add_argument("--repeat", type=int, default=3)
+    parser.add_argument("--before", type=Path, help="a folder with an older launchkit package")
     args = parser.parse_args()
     load = os.getloadavg()[0]
     print(
         f"Measured {datetime.datetime.now():%Y-%m-%d %H:%M} on `{platform.node()}` "
         f"({os.cpu_count()} cores, load average {load:.1f}), median of {args.repeat}.\n"
     )
+    trees: dict[str, Path | None] = {"": None}
+    if args.before is not None:
+        trees["before: "] = args.before
     print("| File | Size | Wall | CPU (user + system) | Peak RSS |")
     print("|---|---|---|---|---|")
     with tempfile.TemporaryDirectory() as folder:
         for name, path in write_files(Path(folder), args.entries).items():
-            runs = [measure(path) for _ in range(args.repeat)]
-            wall, cpu, rss = (statistics.median(column) for column in zip(*runs, strict=True))
+            runs: dict[str, list[tuple[float, float, float]]] = {label: [] for label in trees}
+            for _ in range(args.repeat):
+                for label, tree in trees.items():  # taking turns: the same load for both
+                    runs[label].append(measure(path, tree))
             size = path.stat().st_size / 1e6
-            print(
-                f"| {args.entries} {name} | {size:.1f} MB | {wall:.2f} s | {cpu:.2f} s "
-                f"| {rss:.0f} MB |"
-            )
+            for label, measured in runs.items():
+                wall, cpu, rss = (statistics.median(c) for c in zip(*measured, strict=True))
+                print(
+                    f"| {label}{args.entries} {name} | {size:.1f} MB | {wall:.2f} s "
+                    f"| {cpu:.2f} s | {rss:.0f} MB |"
+                )
 
 
 if __name__ == "__main__":

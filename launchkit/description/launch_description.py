@@ -51,5 +51,7 @@ def walk(actions: list[Action]) -> list[Action]:
     while pending:
         action = pending.pop()
         out.append(action)
-        pending.extend(reversed(list(action.children())))
+        children = action.children()
+        if children:
+            pending.extend(reversed(children))
     return out

@@ -17,7 +17,7 @@ from __future__ import annotations
 from abc import ABC, abstractmethod
 from collections.abc import Sequence
 
-from launchkit.description.substitutions.base import Value, literal
+from launchkit.description.substitutions.base import Text, Value, literal
 from launchkit.description.substitutions.grammar import parse_value
 from launchkit.description.truth import BOOL_EXPECTED, bool_value
 from launchkit.errors import LaunchFileError, Location
@@ -127,7 +127,7 @@ class Entity(ABC):
         if text is None:
             return None
         if "$" not in text and "\\" not in text:  # plain text: no location to find (large files)
-            return parse_value(text)
+            return (Text(text),) if text else ()
         return parse_value(text, self.attribute_location(name))
 
     def required(self, name: str, what: str = "") -> Value:

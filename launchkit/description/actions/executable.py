@@ -24,7 +24,7 @@ if TYPE_CHECKING:
 ON_EXIT = ("shutdown",)
 
 
-@dataclass
+@dataclass(slots=True)  # slots: a large file has one per <executable> and <node>
 class ProcessOptions:
     """The attributes ``<executable>`` and ``<node>`` share, unevaluated (None = not given)."""
 

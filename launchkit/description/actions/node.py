@@ -8,6 +8,7 @@ The command is ``EXECUTABLE [args] [--ros-args ROS_ARGS] --ros-args -r __node:=N
 
 from __future__ import annotations
 
+import dataclasses
 import os
 from dataclasses import dataclass
 from typing import TYPE_CHECKING
@@ -88,7 +89,7 @@ class ExecuteNode(Action):
         argv += ["--ros-args", *ros]
         # <node>'s `name` attribute is the ROS node name; the process label is exec_name or
         # the executable's name (as launch_ros does).
-        options = ProcessOptions(**{**vars(self.options), "name": self.exec_name})
+        options = dataclasses.replace(self.options, name=self.exec_name)
         label = os.path.basename(executable)
         spec = ProcessBuilder(options, context, self.location).build(argv, label, is_node=True)
         spec.files = files

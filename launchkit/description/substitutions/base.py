@@ -14,6 +14,8 @@ if TYPE_CHECKING:
 class Substitution:
     """Base of every substitution: ``perform(context) -> str`` and ``describe() -> str``."""
 
+    __slots__ = ()  # subclasses without slots of their own have a dict as usual
+
     location: Location | None = None
 
     def perform(self, context: LaunchContext) -> str:
@@ -37,6 +39,8 @@ Value = tuple[Substitution, ...]
 
 class Text(Substitution):
     """Literal text."""
+
+    __slots__ = ("location", "text")  # a large file has one per value
 
     def __init__(self, text: str, location: Location | None = None) -> None:
         self.text = text

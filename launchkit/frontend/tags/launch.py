@@ -25,7 +25,7 @@ from launchkit.description.actions import (
 )
 from launchkit.description.actions.log import LEVELS
 from launchkit.description.process_spec import OUTPUT_MODES
-from launchkit.description.substitutions.base import Text, Value
+from launchkit.description.substitutions.base import Text
 
 if TYPE_CHECKING:
     from launchkit.description.actions.base import Action
@@ -119,6 +119,25 @@ def parse_include(entity: Entity, parser: ActionParser) -> Action:
     return Include(entity.required("file"), args)
 
 
+#: The attributes ``<executable>`` and ``<node>`` share: (attribute, field of ProcessOptions,
+#: how it is read: None for any value, a check of ``Entity.checked``, or the choices, and
+#: whether a typed syntax may give it as a native value), in the order they are read.
+_PROCESS_ATTRIBUTES: tuple[tuple[str, str, str | tuple[str, ...] | None, bool], ...] = (
+    ("cwd", "cwd", None, True),
+    ("name", "name", None, True),
+    ("launch-prefix", "launch_prefix", None, True),
+    ("output", "output", OUTPUT_MODES, True),
+    ("shell", "shell", "bool", True),
+    ("emulate_tty", "emulate_tty", "bool", True),
+    ("sigterm_timeout", "sigterm_timeout", "ufloat", True),
+    ("sigkill_timeout", "sigkill_timeout", "ufloat", True),
+    ("respawn", "respawn", "bool", False),
+    ("respawn_delay", "respawn_delay", "ufloat", True),
+    ("respawn_max_retries", "respawn_max_retries", "int", True),
+    ("on_exit", "on_exit", ("shutdown",), True),
+)
+
+
 def parse_process_options(entity: Entity) -> ProcessOptions:
     """The attributes and ``<env>`` children ``<executable>`` and ``<node>`` share."""
     env = []
@@ -126,26 +145,19 @@ def parse_process_options(entity: Entity) -> ProcessOptions:
         if child.tag == "env":
             env.append((child.required("name"), child.required("value")))
             leaf(child).assert_fully_read()
+    options = ProcessOptions(env=env)
     given = set(entity.attribute_names())  # most are absent: not read one by one (large files)
-
-    def checked(name: str, check: str, typed: bool = True) -> Value | None:
-        return entity.checked(name, check, typed=typed) if name in given else None
-
-    return ProcessOptions(
-        cwd=entity.value("cwd") if "cwd" in given else None,
-        name=entity.value("name") if "name" in given else None,
-        launch_prefix=entity.value("launch-prefix") if "launch-prefix" in given else None,
-        output=entity.choice("output", OUTPUT_MODES) if "output" in given else None,
-        shell=checked("shell", "bool"),
-        emulate_tty=checked("emulate_tty", "bool"),
-        sigterm_timeout=checked("sigterm_timeout", "ufloat"),
-        sigkill_timeout=checked("sigkill_timeout", "ufloat"),
-        respawn=checked("respawn", "bool", typed=False),
-        respawn_delay=checked("respawn_delay", "ufloat"),
-        respawn_max_retries=checked("respawn_max_retries", "int"),
-        on_exit=entity.choice("on_exit", ("shutdown",)) if "on_exit" in given else None,
-        env=env,
-    )
+    for attribute, name, how, typed in _PROCESS_ATTRIBUTES:
+        if attribute not in given:
+            continue
+        if how is None:
+            value = entity.value(attribute)
+        elif isinstance(how, tuple):
+            value = entity.choice(attribute, how)
+        else:
+            value = entity.checked(attribute, how, typed=typed)
+        setattr(options, name, value)
+    return options
 
 
 def parse_executable(entity: Entity, parser: ActionParser) -> Action:

@@ -17,89 +17,144 @@ if TYPE_CHECKING:
 
     from launchkit.frontend.xml.expat_tree import Element
 
-    #: An element as expat (a plain file) or lxml (any other) read it.
+    #: An element as expat (a small plain file) or lxml (any other) read it.
     AnyElement = Element | etree._Element
+
+_NEWLINE = re.compile("\n")
+#: How many lines before an element's reported line its start tag may begin (lxml gives the
+#: line where the start tag ends; expat the line where it begins).
+LINES_BACK = 20
+#: What may follow ``<tag`` in a start tag (``<tagname`` is another tag); "" is the text's end.
+_TAG_ENDS = frozenset([" ", "\t", "\n", "\r", "/", ">", ""])
 
 
 @functools.lru_cache(maxsize=256)
 def _attribute_pattern(name: str) -> re.Pattern[str]:
-    """Finds ``NAME = "`` in a start tag."""
-    return re.compile(r"\s" + re.escape(name) + r"\s*=\s*([\"'])")
+    """Finds ``NAME = "`` (starting with the name: a literal the search jumps to)."""
+    return re.compile(re.escape(name) + r"\s*=\s*([\"'])")
 
 
 class SourceFile:
-    """A launch file's path and text (for columns in error messages)."""
+    """A launch file's path and the part of its text still needed for columns in messages:
+    all of it, or, when the file is read as a stream, a window of whole lines that grows as
+    text is read and is cut from the front once the elements there are done."""
 
-    def __init__(self, path: Path, text: str) -> None:
+    __slots__ = ("_line_starts", "file", "first_line", "path", "text")
+
+    def __init__(self, path: Path, text: str = "") -> None:
         self.path = path
-        self.text = text
-        self._line_starts = [0] + [m.end() for m in re.finditer("\n", text)]
+        self.file = str(path)  # one string shared by every location in the file
+        self.text = text  # the window: whole lines from ``first_line`` on
+        self.first_line = 1
+        self._line_starts = [0] + [m.end() for m in _NEWLINE.finditer(text)]
+
+    def append(self, text: str) -> None:
+        """Text read after the window's end."""
+        start = len(self.text)
+        self.text += text
+        self._line_starts.extend(start + m.end() for m in _NEWLINE.finditer(text))
+
+    def forget_before(self, line: int) -> None:
+        """Drop the text before 1-based ``line`` (offsets into the window change)."""
+        index = min(line - self.first_line, len(self._line_starts) - 1)
+        if index <= 0:
+            return
+        cut = self._line_starts[index]
+        self.text = self.text[cut:]
+        self._line_starts = [start - cut for start in self._line_starts[index:]]
+        self.first_line += index
+
+    def line_span(self, line: int) -> tuple[int, int]:
+        """Offsets in the window where 1-based ``line`` starts and ends (clamped)."""
+        starts = self._line_starts
+        index = min(max(line - self.first_line, 0), len(starts) - 1)
+        return starts[index], starts[index + 1] if index + 1 < len(starts) else len(self.text)
 
     def offset(self, line: int) -> int:
-        """Character offset where 1-based ``line`` starts."""
-        return self._line_starts[min(max(line, 1), len(self._line_starts)) - 1]
+        """Offset in the window where 1-based ``line`` starts (clamped to the window)."""
+        index = min(max(line - self.first_line, 0), len(self._line_starts) - 1)
+        return self._line_starts[index]
 
     def position(self, offset: int) -> tuple[int, int]:
-        """1-based (line, column) of a character offset."""
-        line = max(bisect.bisect_right(self._line_starts, offset) - 1, 0)
-        return line + 1, offset - self._line_starts[line] + 1
+        """1-based (line, column) of an offset in the window."""
+        index = max(bisect.bisect_right(self._line_starts, offset) - 1, 0)
+        return index + self.first_line, offset - self._line_starts[index] + 1
 
     def location(self, offset: int) -> Location:
-        """The location of a character offset."""
+        """The location of an offset in the window."""
         line, col = self.position(offset)
-        return Location(str(self.path), line, col)
+        return Location(self.file, line, col)
 
 
 class XmlEntity(Entity):
     """An element of an XML launch file."""
 
     def __init__(self, element: AnyElement, source: SourceFile) -> None:
-        super().__init__(str(element.tag))
+        super().__init__(element.tag if isinstance(element.tag, str) else str(element.tag))
         self.element = element
         self.source = source
-        self._start = self._find_start()
+        self._attributes: dict[str, str] = dict(element.items())  # type: ignore[arg-type]
+        self._start, self._line, self._col = self._find_start()
         self._location: Location | None = None
 
-    def _find_start(self) -> int:
+    def _find_start(self) -> tuple[int, int, int]:
+        """The offset in the window, line and column where the start tag begins."""
         sourceline: int | None = self.element.sourceline  # type: ignore[assignment]
         line = sourceline or 1
-        # lxml reports the line where the start tag ends (expat where it begins); search back
-        # a little for "<tag".
-        text = self.source.text
-        search_from = self.source.offset(max(1, line - 20))
-        end = self.source.offset(line + 1) if line < len(self.source._line_starts) else len(text)
+        source = self.source
+        start, end = source.line_span(line)
         opening = "<" + self.tag
+        after = len(opening)
+        text = source.text
+        # lxml reports the line where the start tag ends: most start tags begin on it too
+        found = text.rfind(opening, start, end)
+        if found >= 0 and (text[found + after : found + after + 1] in _TAG_ENDS):
+            return found, line, found - start + 1
+        # else search back a few lines for "<tag"
+        search_from = source.offset(line - LINES_BACK)
         while True:
             found = text.rfind(opening, search_from, end)
             if found < 0:
-                return self.source.offset(line)
-            following = text[found + len(opening) : found + len(opening) + 1]
-            if following.isspace() or following in ("/", ">"):
-                return found
+                return start, line, 1
+            if text[found + after : found + after + 1] in _TAG_ENDS:
+                return (found, *source.position(found))
             end = found
 
     @property
     def location(self) -> Location:
         """Where the element's start tag begins."""
         if self._location is None:
-            self._location = self.source.location(self._start)
+            self._location = Location(self.source.file, self._line, self._col)
         return self._location
 
     def attribute_location(self, name: str) -> Location:
         """Where attribute ``name``'s value begins (after the quote)."""
-        match = _attribute_pattern(name).search(self.source.text, self._start)
-        if match is None:
-            return self.location
-        return self.source.location(match.end())
+        pattern = _attribute_pattern(name)
+        text = self.source.text
+        position = self._start
+        while True:  # the first NAME = " after a blank
+            match = pattern.search(text, position)
+            if match is None:
+                return self.location
+            if text[match.start() - 1].isspace():
+                end = match.end()
+                if text.find("\n", self._start, end) < 0:  # on the start tag's first line
+                    return Location(self.source.file, self._line, self._col + end - self._start)
+                return self.source.location(end)
+            position = match.start() + 1
 
     def attribute_names(self) -> list[str]:
         """The element's attribute names."""
-        return [n if isinstance(n, str) else n.decode() for n in self.element.keys()]
+        return list(self._attributes)
 
     def attribute_text(self, name: str) -> str | None:
         """The attribute's text as lxml read it (entities and character references resolved)."""
-        value = self.element.get(name)
-        return None if value is None else str(value)
+        return self._attributes.get(name)
+
+    def raw(self, name: str, native: str | None = None) -> str | None:
+        """Attribute text as written (marks it read); XML has no typed values."""
+        self._read.add(name)  # as Entity.raw does, a call shorter (a large file's hot path)
+        return self._attributes.get(name)
 
     def children(self) -> list[Entity]:
         """Child elements (comments and processing instructions skipped)."""
@@ -108,3 +163,14 @@ class XmlEntity(Entity):
         return [
             XmlEntity(child, self.source) for child in self.element if isinstance(child.tag, str)
         ]
+
+
+def read_root(entity: XmlEntity) -> str | None:
+    """Check the root element (``<launch>``, no unknown attribute); its ``deprecated``."""
+    if entity.tag != "launch":
+        raise entity.error(
+            f"the root element is <{entity.tag}>", expected="<launch> as the root element"
+        )
+    deprecated = entity.raw("deprecated")
+    entity.assert_fully_read()
+    return deprecated

@@ -38,6 +38,10 @@ class Element:
         """The attribute names, in document order."""
         return list(self.attrib)
 
+    def items(self) -> list[tuple[str, str]]:
+        """The attributes' names and values, in document order."""
+        return list(self.attrib.items())
+
     def get(self, name: str) -> str | None:
         """An attribute's value."""
         return self.attrib.get(name)

@@ -1,18 +1,21 @@
-"""Parse XML launch files into :class:`LaunchDescription`s: a plain file with expat
-(:mod:`launchkit.frontend.xml.expat_tree`), any other with lxml (both keep line numbers)."""
+"""Parse XML launch files into :class:`LaunchDescription`s (both readers keep line numbers): a
+small plain file with expat (:mod:`launchkit.frontend.xml.expat_tree`: no lxml import for the
+common case), any other with lxml, as a stream (:mod:`launchkit.frontend.xml.stream`: a large
+file is never held whole)."""
 
 from __future__ import annotations
 
-import re
+import functools
 import stat
+from collections.abc import Callable, Iterable
 from pathlib import Path
 from typing import TYPE_CHECKING
 
 from launchkit.description.launch_description import LaunchDescription
 from launchkit.errors import LaunchFileError, Location
 from launchkit.frontend.action_parser import ActionParser
-from launchkit.frontend.xml.entity import SourceFile, XmlEntity
-from launchkit.frontend.xml.expat_tree import read_plain
+from launchkit.frontend.xml.entity import SourceFile, XmlEntity, read_root
+from launchkit.frontend.xml.expat_tree import MAX_PLAIN_SIZE, read_plain
 
 if TYPE_CHECKING:
     from launchkit.frontend.xml.entity import AnyElement
@@ -43,7 +46,13 @@ class XmlParser:
                     included_from or Location(str(path)),
                     expected=f"a launch file of at most {MAX_FILE_SIZE} bytes",
                 )
-            return self.parse_bytes(path.read_bytes(), path)  # no name holds the bytes
+            if status.st_size <= MAX_PLAIN_SIZE:
+                return self.parse_bytes(path.read_bytes(), path)
+            from launchkit.frontend.xml.stream import CHUNK_SIZE
+
+            with path.open("rb") as stream:
+                chunks = iter(functools.partial(stream.read, CHUNK_SIZE), b"")
+                return self._parse(chunks, path, path.read_bytes)
         except OSError as error:
             raise LaunchFileError(
                 f"cannot read '{path}': {error.strerror}", included_from
@@ -58,16 +67,45 @@ class XmlParser:
         or byte order mark names (lxml reads it), else UTF-8; a byte that is not valid in
         that encoding is an error at its line and column."""
         plain = read_plain(data)
-        root, encoding = plain if plain is not None else _read_with_lxml(data, path)
+        if plain is not None:
+            root, encoding = plain
+            source = SourceFile(path, _decoded(data, encoding))
+            del data, plain  # its bytes go before its actions are built
+            entity = XmlEntity(root, source)
+            deprecated = read_root(entity)
+            return LaunchDescription(path, self.actions.parse_actions(entity), deprecated)
+        from launchkit.frontend.xml.stream import CHUNK_SIZE
+
+        chunks = (data[start : start + CHUNK_SIZE] for start in range(0, len(data), CHUNK_SIZE))
+        return self._parse(chunks, path, lambda: data)
+
+    def _parse(
+        self, chunks: Iterable[bytes], path: Path, whole: Callable[[], bytes]
+    ) -> LaunchDescription:
+        """Parse the file as a stream; a file that is not well-formed, or whose encoding is
+        not one the stream reads (UTF-16, say), is read again whole (``whole()``), which
+        reports its error as it always has."""
+        from lxml import etree  # with inspect, typing, gzip: only for a file expat does not read
+
+        from launchkit.frontend.xml.stream import ElementStream, NotStreamable
+
+        stream = ElementStream(self.actions, path)
+        try:
+            for chunk in chunks:
+                stream.feed(chunk)
+            return stream.close()
+        except (etree.XMLSyntaxError, NotStreamable):
+            pass
+        return self.parse_whole(whole(), path)
+
+    def parse_whole(self, data: bytes, path: Path) -> LaunchDescription:
+        """Parse ``data`` as one tree (the stream's fallback): its errors name the line and
+        column, and an undecodable byte its offset."""
+        root, encoding = _read_with_lxml(data, path)
         source = SourceFile(path, _decoded(data, encoding))
         del data  # a large file: its bytes go before its actions are built
         entity = XmlEntity(root, source)
-        if entity.tag != "launch":
-            raise entity.error(
-                f"the root element is <{entity.tag}>", expected="<launch> as the root element"
-            )
-        deprecated = entity.raw("deprecated")
-        entity.assert_fully_read()
+        deprecated = read_root(entity)
         return LaunchDescription(path, self.actions.parse_actions(entity), deprecated)
 
 
@@ -75,7 +113,9 @@ def _read_with_lxml(data: bytes, path: Path) -> tuple[AnyElement, str | None]:
     """The root element and encoding lxml reads; its error, located, for a malformed file."""
     from lxml import etree  # with inspect, typing, gzip: only for a file expat does not read
 
-    parser = etree.XMLParser(remove_comments=True, remove_pis=True, resolve_entities=False)
+    from launchkit.frontend.xml.stream import PARSER_OPTIONS
+
+    parser = etree.XMLParser(**PARSER_OPTIONS)
     try:
         root = etree.fromstring(data, parser)
     except etree.XMLSyntaxError as error:
@@ -92,15 +132,14 @@ def _read_with_lxml(data: bytes, path: Path) -> tuple[AnyElement, str | None]:
     return root, root.getroottree().docinfo.encoding
 
 
-_DECLARED = re.compile(rb"""^\s*<\?xml[^>]*encoding\s*=\s*["']([A-Za-z0-9._-]+)["']""")
-
-
 def _undecodable(data: bytes, path: Path) -> LaunchFileError | None:
     """The first byte that is not valid in the file's encoding (declared, else UTF-8), at its
     line and column and byte offset; None when there is none (or a byte order mark rules)."""
     if data.startswith((b"\xff\xfe", b"\xfe\xff")):
         return None
-    declared = _DECLARED.match(data[:200])
+    from launchkit.frontend.xml.stream import DECLARED_ENCODING
+
+    declared = DECLARED_ENCODING.match(data[:200])
     encoding = declared.group(1).decode() if declared else "utf-8"
     try:
         data.decode(encoding)

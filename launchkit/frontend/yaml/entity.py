@@ -179,26 +179,7 @@ class YamlEntity(Entity):
         )
 
     def _action(self, item: Node) -> YamlEntity:
-        if item.kind != "map" or not item.pairs:
-            what = "an empty mapping" if item.kind == "map" else describe(item)
-            raise LaunchFileError(
-                f"an entry of '{self.tag}' is {what}",
-                item.location,
-                expected="one tag per list item (- tag: {...})",
-            )
-        if len(item.pairs) > 1:
-            names = ", ".join(f"'{k.value}'" for k, _ in item.pairs)
-            raise LaunchFileError(
-                f"an entry of '{self.tag}' holds several tags ({names})",
-                item.pairs[1][0].location,
-                expected="one tag per list item: start each with '- '",
-            )
-        key, value = item.pairs[0]
-        if key.kind != "scalar" or not isinstance(key.value, str):
-            raise LaunchFileError(
-                f"a tag in '{self.tag}' is {describe(key)}", key.location, expected="a tag name"
-            )
-        return YamlEntity(key.value, value, key.location)
+        return action_entity(self.tag, item)
 
     def _sub(self, name: str, item: Node) -> YamlEntity:
         if item.kind != "map":
@@ -208,6 +189,30 @@ class YamlEntity(Entity):
                 expected=f"a mapping such as {{name: ..., value: ...}} in every item of '{name}'",
             )
         return YamlEntity(name, item, item.location)
+
+
+def action_entity(parent: str, item: Node) -> YamlEntity:
+    """The entity of one item of ``parent``'s list of actions (``- tag: {...}``)."""
+    if item.kind != "map" or not item.pairs:
+        what = "an empty mapping" if item.kind == "map" else describe(item)
+        raise LaunchFileError(
+            f"an entry of '{parent}' is {what}",
+            item.location,
+            expected="one tag per list item (- tag: {...})",
+        )
+    if len(item.pairs) > 1:
+        names = ", ".join(f"'{k.value}'" for k, _ in item.pairs)
+        raise LaunchFileError(
+            f"an entry of '{parent}' holds several tags ({names})",
+            item.pairs[1][0].location,
+            expected="one tag per list item: start each with '- '",
+        )
+    key, value = item.pairs[0]
+    if key.kind != "scalar" or not isinstance(key.value, str):
+        raise LaunchFileError(
+            f"a tag in '{parent}' is {describe(key)}", key.location, expected="a tag name"
+        )
+    return YamlEntity(key.value, value, key.location)
 
 
 def _is_entity_list(node: Node) -> bool:
