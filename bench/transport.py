@@ -26,6 +26,7 @@ holding the item (median delay), with the executor's ``WorkQueue`` and with ``qu
 from __future__ import annotations
 
 import argparse
+import itertools
 import json
 import os
 import platform
@@ -54,8 +55,9 @@ def _payload(size: int, seq: int) -> bytes:
 class _Transport:
     """One side's way to publish and subscribe raw bytes (launchkit.ros or raw zenoh)."""
 
-    def __init__(self, kind: str) -> None:
+    def __init__(self, kind: str, depth: int = 10) -> None:
         self.kind = kind
+        self.depth = depth  # the launchkit.ros subscription's KEEP_LAST depth; 0: KEEP_ALL
         self.hop: Any = None
         if kind == "hop":  # raw zenoh, its callback handing each sample to the main thread
             from launchkit.ros.executor import WorkQueue
@@ -96,8 +98,15 @@ class _Transport:
         elif self.kind == "raw":
             self.session.declare_subscriber("bench/data", lambda s: on_data(s.payload.to_bytes()))
         else:
+            from launchkit.ros import HistoryPolicy, QoSProfile
+
+            qos = (
+                QoSProfile(depth=self.depth)
+                if self.depth
+                else QoSProfile(depth=10, history=HistoryPolicy.KEEP_ALL)
+            )
             self.node.create_subscription(
-                self.msg_type, "bench/data", lambda m: on_data(m.data[:12].tobytes()), 10
+                self.msg_type, "bench/data", lambda m: on_data(m.data[:12].tobytes()), qos
             )
 
     def run_for(self, seconds: float, until: Any = None) -> None:
@@ -137,6 +146,7 @@ def _publish(kind: str, size: int, rate: float, count: int, seconds: float) -> N
     next_t = time.monotonic()
     seq = 0
     end = time.monotonic() + seconds if seconds else None
+    first_ns = time.monotonic_ns()
     while side.ok() and ((count and seq < count) or (end and time.monotonic() < end)):
         put(_payload(size, seq))
         seq += 1
@@ -145,24 +155,27 @@ def _publish(kind: str, size: int, rate: float, count: int, seconds: float) -> N
             delay = next_t - time.monotonic()
             if delay > 0:
                 time.sleep(delay)
+    last_ns = time.monotonic_ns()
     side.close()
     try:
-        print(json.dumps({"sent": seq}), flush=True)
+        print(json.dumps({"sent": seq, "first_ns": first_ns, "last_ns": last_ns}), flush=True)
     except BrokenPipeError:  # the parent stopped reading (first-message runs)
         pass
 
 
-def role_sub(kind: str, expect: int, seconds: float, first_only: bool) -> None:
+def role_sub(kind: str, expect: int, seconds: float, first_only: bool, depth: int = 10) -> None:
     started = time.monotonic_ns()
-    side = _Transport(kind)
+    side = _Transport(kind, depth)
     opened = time.monotonic_ns()
     latencies: list[int] = []
     stamps: list[int] = []
+    seqs: list[int] = []
 
     def on_data(data: bytes) -> None:
         now = time.monotonic_ns()
         sent, seq = HEADER.unpack_from(data)
         stamps.append(now)
+        seqs.append(seq)
         if seq >= WARMUP:
             latencies.append(now - sent)
 
@@ -187,6 +200,11 @@ def role_sub(kind: str, expect: int, seconds: float, first_only: bool) -> None:
                 "latencies_ns": latencies,
                 "received": len(stamps),
                 "rate": (len(stamps) - 1) / span if span else 0.0,
+                "last_ns": stamps[-1] if stamps else None,
+                # arrival times in ms after the first (the parent counts those while the
+                # publisher ran) and whether every delivered message came in order
+                "stamps_ms": [(t - stamps[0]) // 1_000_000 for t in stamps] if expect == 0 else [],
+                "ordered": all(a < b for a, b in itertools.pairwise(seqs)),
                 "first_ns": stamps[0] if stamps else None,
                 "started_ns": started,
                 "opened_ns": opened,
@@ -218,15 +236,22 @@ def _result(proc: subprocess.Popen[str], timeout: float = 60.0) -> dict[str, Any
 
 
 def _pair(kind: str, sub_args: list[str], pub_args: list[str]) -> dict[str, Any]:
+    result, _ = _pair_both(kind, sub_args, pub_args)
+    return result
+
+
+def _pair_both(
+    kind: str, sub_args: list[str], pub_args: list[str]
+) -> tuple[dict[str, Any], dict[str, Any]]:
+    """Run a subscriber and a publisher; what each reported (the subscriber's, the
+    publisher's)."""
     sub = _child("--role", "sub", "--kind", kind, *sub_args)
     _wait_line(sub, "ready")
     pub = _child("--role", "pub", "--kind", kind, *pub_args)
     _wait_line(pub, "ready")
     result = _result(sub)
-    pub.wait(60)
-    if pub.stdout:
-        pub.stdout.close()
-    return result
+    sent = _result(pub)
+    return result, sent
 
 
 def _pct(values: list[int], q: float) -> float:
@@ -245,13 +270,42 @@ def latency(kind: str, size: int, rate: float, count: int) -> tuple[float, float
     return _pct(lat, 0.5), _pct(lat, 0.99), len(lat)
 
 
-def throughput(kind: str, seconds: float) -> float:
-    result = _pair(
+def throughput(kind: str, seconds: float, depth: int = 10) -> dict[str, Any]:
+    """100 B messages flat out for ``seconds``: ``rate`` is what the subscriber delivered per
+    second while the publisher ran (its callbacks between the publisher's first and last put),
+    ``received``/``sent`` all it delivered of all that was sent, ``after`` how many of those
+    came after the publisher stopped (a backlog drained) and ``span_rate`` the old figure:
+    deliveries over the span from the first to the last delivery, drain included. ``depth``:
+    the launchkit.ros subscription's KEEP_LAST depth (0: KEEP_ALL)."""
+    result, pub = _pair_both(
         kind,
-        ["--seconds", str(seconds + 10)],
+        ["--seconds", str(seconds + 30), "--depth", str(depth)],
         ["--size", "100", "--rate", "0", "--seconds", str(seconds)],
     )
-    return float(result["rate"])
+    first = result["first_ns"]
+    pub_end_ms = (pub["last_ns"] - first) / 1e6
+    during = sum(1 for t in result["stamps_ms"] if t <= pub_end_ms)
+    window = (pub["last_ns"] - max(first, pub["first_ns"])) / 1e9
+    return {
+        "rate": during / window if window > 0 else 0.0,
+        "received": result["received"],
+        "sent": pub["sent"],
+        "after": result["received"] - during,
+        "drain_s": max(0.0, (result["last_ns"] - pub["last_ns"]) / 1e9),
+        "span_rate": float(result["rate"]),
+        "ordered": result["ordered"],
+        "depth": depth,
+    }
+
+
+def _throughput_line(label: str, r: dict[str, Any]) -> str:
+    depth = "" if r.get("depth") is None else f", depth {r['depth'] or 'KEEP_ALL'}"
+    return (
+        f"{label:14s} 100 B  throughput {r['rate']:10.0f} msg/s while publishing "
+        f"(received {r['received']} of {r['sent']} sent = {r['received'] / max(1, r['sent']):.2f}, "
+        f"{r['after']} after the publisher stopped, drained in {r['drain_s']:.2f} s; "
+        f"first-to-last rate {r['span_rate']:.0f}{depth}; in order: {r['ordered']})"
+    )
 
 
 def first_message(kind: str, runs: int) -> tuple[list[float], list[float]]:
@@ -425,6 +479,35 @@ def steps() -> None:
     ros.shutdown()
 
 
+def throughput_rounds(rounds: int, trees: list[str], depth: int) -> None:
+    """Throughput of raw zenoh and of each tree (``LABEL=DIR``, run by ``PYTHONPATH``; none:
+    this one), at ``depth`` and KEEP_ALL, alternating, ``rounds`` times."""
+    print(
+        f"# throughput rounds, {datetime.now(timezone.utc):%Y-%m-%d %H:%M} UTC, "
+        f"load {os.getloadavg()[0]:.1f}"
+    )
+    pairs = [tree.split("=", 1) for tree in trees] or [["this tree", ""]]
+    base = os.environ.get("PYTHONPATH")
+    for index in range(rounds):
+        raw = throughput("raw", 3.0)
+        raw["depth"] = None
+        print(f"round {index + 1}, load {os.getloadavg()[0]:.1f}")
+        print(_throughput_line("raw zenoh", raw))
+        for label, directory in pairs:
+            if directory:
+                os.environ["PYTHONPATH"] = directory
+            try:
+                for d in (depth, 0):
+                    r = throughput("lk", 3.0, depth=d)
+                    print(_throughput_line(label, r) + f" ratio {r['rate'] / raw['rate']:.3f}")
+            finally:
+                if base is None:
+                    os.environ.pop("PYTHONPATH", None)
+                else:
+                    os.environ["PYTHONPATH"] = base
+        sys.stdout.flush()
+
+
 def main() -> int:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--role", choices=["pub", "sub"])
@@ -435,6 +518,20 @@ def main() -> int:
     parser.add_argument("--seconds", type=float, default=0.0)
     parser.add_argument("--expect", type=int, default=0)
     parser.add_argument("--first", action="store_true")
+    parser.add_argument("--depth", type=int, default=10, help="subscription depth (0: KEEP_ALL)")
+    parser.add_argument(
+        "--throughput-rounds",
+        type=int,
+        default=0,
+        help="only throughput: this many rounds of raw zenoh and each --tree, alternating",
+    )
+    parser.add_argument(
+        "--tree",
+        action="append",
+        default=[],
+        metavar="LABEL=DIR",
+        help="a launchkit tree (exported with git archive) for --throughput-rounds, by PYTHONPATH",
+    )
     parser.add_argument("--quick", action="store_true", help="fewer messages (a smoke run)")
     parser.add_argument("--steps", action="store_true", help="time each per-message step")
     args = parser.parse_args()
@@ -442,7 +539,7 @@ def main() -> int:
         role_pub(args.kind, args.size, args.rate, args.count, args.seconds)
         return 0
     if args.role == "sub":
-        role_sub(args.kind, args.expect, args.seconds, args.first)
+        role_sub(args.kind, args.expect, args.seconds, args.first, args.depth)
         return 0
 
     from launchkit.ros.router import start_router
@@ -457,6 +554,12 @@ def main() -> int:
     endpoint = f"tcp/127.0.0.1:{port}"
     os.environ["LAUNCHKIT_ROUTER"] = endpoint
     router = start_router(endpoint)
+    if args.throughput_rounds:
+        try:
+            throughput_rounds(args.throughput_rounds, args.tree, args.depth)
+        finally:
+            router.close()
+        return 0
     scale = 10 if args.quick else 1
     print(f"# transport benchmark, {datetime.now(timezone.utc):%Y-%m-%d %H:%M} UTC")
     print(f"# {platform.platform()}, {os.cpu_count()} cores, Python {platform.python_version()}")
@@ -472,6 +575,10 @@ def main() -> int:
             r["small"] = latency(kind, 100, 1000.0, 3000 // scale)
             r["large"] = latency(kind, 100_000, 100.0, 500 // scale)
             r["throughput"] = throughput(kind, 3.0 / (3 if args.quick else 1))
+            if kind == "raw":
+                r["throughput"]["depth"] = None
+            else:
+                r["keep_all"] = throughput(kind, 3.0 / (3 if args.quick else 1), depth=0)
             r["first"] = first_message(kind, 5 if not args.quick else 2)
             results[kind] = r
             s50, s99, sn = r["small"]
@@ -479,7 +586,9 @@ def main() -> int:
             starts, opens = r["first"]
             print(f"{label:14s} 100 B  latency p50 {s50:8.1f} us  p99 {s99:8.1f} us  (n={sn})")
             print(f"{label:14s} 100 KB latency p50 {l50:8.1f} us  p99 {l99:8.1f} us  (n={ln})")
-            print(f"{label:14s} 100 B  throughput {r['throughput']:10.0f} msg/s")
+            print(_throughput_line(label, r["throughput"]))
+            if "keep_all" in r:
+                print(_throughput_line(label, r["keep_all"]))
             print(
                 f"{label:14s} first message: from process start median "
                 f"{statistics.median(starts):6.1f} ms "
@@ -493,12 +602,14 @@ def main() -> int:
     large_ratio = results["lk"]["large"][0] / results["raw"]["large"][0]
     print(
         f"100 KB p50 ratio {large_ratio:.2f}; throughput ratio "
-        f"{results['lk']['throughput'] / results['raw']['throughput']:.2f} (launchkit/raw zenoh)"
+        f"{results['lk']['throughput']['rate'] / results['raw']['throughput']['rate']:.2f} "
+        "(launchkit/raw zenoh)"
     )
     first = statistics.median(results["lk"]["first"][1])
     print(
         f"transport: p50 ratio {ratio:.2f} (launchkit/raw zenoh), "
-        f"throughput {results['lk']['throughput']:.0f} msg/s, first message {first:.1f} ms"
+        f"throughput {results['lk']['throughput']['rate']:.0f} msg/s, "
+        f"first message {first:.1f} ms"
     )
     return 0
 
