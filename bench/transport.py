@@ -3,13 +3,17 @@
 Run by hand: ``python bench/transport.py``. It hosts a router on a free loopback port and,
 for launchkit.ros and raw zenoh in turn, measures
   * one-way latency p50/p99 of 100 B messages (1 kHz) and 100 KB messages (100 Hz),
-  * throughput of 100 B messages (publisher flat out; messages received per second),
+  * throughput of 100 B messages (publisher flat out; messages the subscriber's callback got
+    per second while the publisher ran, with received/sent, what came after it stopped and
+    the subscription's depth: 10, then KEEP_ALL),
   * time to the first message: from the subscriber's process start, and from its
     ``init()``/``zenoh.open()``, while a publisher already sends at 1 kHz.
 Latency is the receiver's CLOCK_MONOTONIC minus the sender's (one clock, shared by processes).
 ``--kind hop`` (a child role, and a third latency line of the full run) is raw zenoh whose
 callback only hands the bytes to the main thread through the executor's ``WorkQueue``: what
 rclpy's threading (callbacks in the spinning thread) costs with nothing else of the ROS layer.
+``--throughput-rounds N --tree LABEL=DIR ...`` only measures throughput: raw zenoh and each
+tree (``git archive`` exports, run by ``PYTHONPATH``) alternating, N rounds.
 The last line is ``transport: p50 ratio R (launchkit/raw zenoh), throughput N msg/s,
 first message T ms`` (R for 100 B; N and T for launchkit.ros; T from init).
 
