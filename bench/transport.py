@@ -14,8 +14,9 @@ callback only hands the bytes to the main thread through the executor's ``WorkQu
 rclpy's threading (callbacks in the spinning thread) costs with nothing else of the ROS layer.
 ``--throughput-rounds N --tree LABEL=DIR ...`` only measures throughput: raw zenoh and each
 tree (``git archive`` exports, run by ``PYTHONPATH``) alternating, N rounds.
-The last line is ``transport: p50 ratio R (launchkit/raw zenoh), throughput N msg/s,
-first message T ms`` (R for 100 B; N and T for launchkit.ros; T from init).
+The last line is ``transport: p50 ratio R (launchkit/raw zenoh), throughput N msg/s
+(KEEP_ALL K), first message T ms`` (R for 100 B; N (depth 10), K and T for launchkit.ros; T
+from init).
 
 ``python bench/transport.py --steps`` instead times each step of the per-message path in one
 process (median of many calls, microseconds): building the message, serializing it, the
@@ -612,7 +613,8 @@ def main() -> int:
     first = statistics.median(results["lk"]["first"][1])
     print(
         f"transport: p50 ratio {ratio:.2f} (launchkit/raw zenoh), "
-        f"throughput {results['lk']['throughput']['rate']:.0f} msg/s, "
+        f"throughput {results['lk']['throughput']['rate']:.0f} msg/s "
+        f"(KEEP_ALL {results['lk']['keep_all']['rate']:.0f}), "
         f"first message {first:.1f} ms"
     )
     return 0
