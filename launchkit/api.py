@@ -13,7 +13,7 @@ from launchkit.checks import CheckedTree, check_tree, static_path, undeclared_ar
 from launchkit.description.actions import DeclareArgument, Include
 from launchkit.description.actions.base import Action
 from launchkit.description.launch_context import LaunchContext, Runner
-from launchkit.description.launch_description import LaunchDescription, walk
+from launchkit.description.launch_description import LaunchDescription, walk_lazily
 from launchkit.description.ros_link import RosLink
 from launchkit.errors import LaunchkitError, PackageNotFoundError
 from launchkit.frontend.launch_loader import LaunchLoader, collector_paused
@@ -116,22 +116,25 @@ def dry_run(
 
     arguments = dict(arguments or {})
     packages, loader = PackageIndex(), LaunchLoader()
-    tree = check_tree(path, arguments, loader, packages)
-    if bridge:
-        from launchkit.bridge.launch import add_bridge
+    # one pause of the cycle collector for reading, checking and evaluating: between phases
+    # it would pass over every object a large file built (Python files' code still has it)
+    with collector_paused():
+        tree = check_tree(path, arguments, loader, packages)
+        if bridge:
+            from launchkit.bridge.launch import add_bridge
 
-        add_bridge(tree.top, arguments)
-    recorder = Recorder()
-    context = _context(recorder, arguments, packages, loader, None)
-    recorder.context = context
-    context.uninterrupted = held
-    try:
-        with raising(), context.in_file(tree.top.path), collector_paused():
-            for action in tree.top.actions:
-                action.visit(context)
-        return tree, recorder.items
-    finally:
-        context.cleanup()
+            add_bridge(tree.top, arguments)
+        recorder = Recorder()
+        context = _context(recorder, arguments, packages, loader, None)
+        recorder.context = context
+        context.uninterrupted = held
+        try:
+            with raising(), context.in_file(tree.top.path):
+                for action in tree.top.actions:
+                    action.visit(context)
+            return tree, recorder.items
+        finally:
+            context.cleanup()
 
 
 def describe(
@@ -156,7 +159,11 @@ def check_report(path: Path, arguments: Mapping[str, str] | None = None) -> str:
         + (f" and {timers} timer(s)" if timers else "")
         + ")"
     )
-    if any(action.condition is not None for d in tree.files.values() for action in walk(d.actions)):
+    if any(
+        action.condition is not None
+        for d in tree.files.values()
+        for action in walk_lazily(d.actions)
+    ):
         report += (
             "\nnot checked: what an if/unless that is false with these arguments would "
             "include or start (pass other arguments to check it)"

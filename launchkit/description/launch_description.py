@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+from collections.abc import Iterator
 from pathlib import Path
 
 from launchkit._record import Record
@@ -55,3 +56,14 @@ def walk(actions: list[Action]) -> list[Action]:
         if children:
             pending.extend(reversed(children))
     return out
+
+
+def walk_lazily(actions: list[Action]) -> Iterator[Action]:
+    """:func:`walk` one action at a time (for a search that may stop at the first)."""
+    pending = actions[::-1]
+    while pending:
+        action = pending.pop()
+        yield action
+        children = action.children()
+        if children:
+            pending.extend(reversed(children))

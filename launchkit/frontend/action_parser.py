@@ -76,7 +76,7 @@ class ActionParser:
 
     def parse_action(self, entity: Entity) -> Action:
         """One action tag, with its condition, fully checked."""
-        parse = self._load(entity.tag)
+        parse = self._parsers.get(entity.tag) or self._load(entity.tag)
         if parse is None:
             raise entity.error(
                 f"unknown tag {entity.label()}",

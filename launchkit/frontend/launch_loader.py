@@ -66,8 +66,9 @@ class LaunchLoader:
         if cached is not None:
             return cached
         frontend = self._frontend(path, syntax)
-        # not around a Python file's own code, which may well make garbage
-        pause = collector_paused() if frontend in ("xml", "yaml") else contextlib.nullcontext()
+        # not around a Python file's own code, which may well make garbage (the collector runs
+        # for it even inside a longer pause, a check's)
+        pause = collector_paused() if frontend in ("xml", "yaml") else collector_running()
         with pause:
             description = self._read(path, frontend, syntax, included_from)
         self._cache[(path, syntax)] = description
@@ -117,6 +118,18 @@ def collector_paused() -> Iterator[None]:
     finally:
         if enabled:
             gc.enable()
+
+
+@contextlib.contextmanager
+def collector_running() -> Iterator[None]:
+    """Python's cycle collector on (for a Python launch file's own code), then as it was."""
+    paused = not gc.isenabled()
+    gc.enable()
+    try:
+        yield
+    finally:
+        if paused:
+            gc.disable()
 
 
 def _looks_like_xml(path: Path) -> bool:

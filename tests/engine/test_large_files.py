@@ -8,10 +8,12 @@ check the structure that bounds them, without timing.
 
 from __future__ import annotations
 
+import gc
 from pathlib import Path
 
 import pytest
 
+from launchkit.api import check_report
 from launchkit.description.actions import SetConfiguration
 from launchkit.description.actions.base import Action
 from launchkit.errors import LaunchFileError
@@ -143,3 +145,53 @@ def test_yaml_errors_keep_their_precedence(tmp_path: Path) -> None:
         LaunchLoader().load(path)
     assert str(raised.value.location) == f"{path.resolve()}:2:3"
     assert "nosuchtag" in str(raised.value)
+
+
+def test_process_attributes_are_checked_in_one_order_whatever_the_order_written(
+    tmp_path: Path,
+) -> None:
+    # <executable> reads only the attributes given, but in its table's order: the first bad one
+    # in that order is reported (output before respawn), as when each was read in turn
+    for written in ('respawn="maybe" output="loud"', 'output="loud" respawn="maybe"'):
+        path = _write(tmp_path / "x.launch.xml", [f'<executable cmd="true" {written}/>'])
+        with pytest.raises(LaunchFileError) as raised:
+            LaunchLoader().load(path)
+        assert "attribute 'output' of <executable> is 'loud'" in str(raised.value)
+        column = 3 + len('<executable cmd="true" ') + written.index("output") + len('output="')
+        assert str(raised.value.location) == f"{path.resolve()}:2:{column}"
+
+
+def test_conditions_and_unknown_attributes_far_in_a_large_file(tmp_path: Path) -> None:
+    lines = [f'<executable cmd="/bin/true" name="p{i}" if="false"/>' for i in range(ENTRIES)]
+    lines[-2] = '<executable cmd="/bin/true"\n     unless="true"/>'
+    path = _write(tmp_path / "big.launch.xml", lines).resolve()
+    actions = LaunchLoader().load(path).actions
+    first, last = actions[0].condition, actions[-2].condition
+    assert first is not None and last is not None and last.negate
+    assert str(first.location) == f"{path}:2:{3 + lines[0].index('if=') + len('if=') + 1}"
+    assert str(last.location) == f"{path}:{ENTRIES + 1}:14"  # unless="... on its second line
+    lines[-5] = '<executable cmd="/bin/true" name="p" nmae="q"/>'
+    _write(path, lines)
+    with pytest.raises(LaunchFileError) as raised:
+        LaunchLoader().load(path)
+    column = 3 + len('<executable cmd="/bin/true" name="p" nmae="')
+    assert str(raised.value.location) == f"{path}:{ENTRIES - 3}:{column}"
+    assert "unknown attribute 'nmae' on <executable>" in str(raised.value)
+    assert "(expected one of: cmd, if, name, unless)" in str(raised.value)  # as before
+
+
+def test_a_python_launch_files_code_runs_with_the_cycle_collector(tmp_path: Path) -> None:
+    # a check pauses the collector while it reads and evaluates (large files), but not for a
+    # Python launch file's own code, which may make garbage
+    path = tmp_path / "probe.launch.py"
+    path.write_text(
+        "import gc\n"
+        "from launch import LaunchDescription\n"
+        "def generate_launch_description():\n"
+        "    if not gc.isenabled():\n"
+        "        raise RuntimeError('the collector is paused')\n"
+        "    return LaunchDescription([])\n"
+    )
+    assert gc.isenabled()
+    assert ": ok (1 file(s)" in check_report(path)
+    assert gc.isenabled()

@@ -137,6 +137,9 @@ _PROCESS_ATTRIBUTES: tuple[tuple[str, str, str | tuple[str, ...] | None, bool], 
     ("on_exit", "on_exit", ("shutdown",), True),
 )
 
+#: Each of those attributes: its place in the table first, then the table's entry.
+_PROCESS_ORDER = {spec[0]: (index, *spec) for index, spec in enumerate(_PROCESS_ATTRIBUTES)}
+
 
 def parse_process_options(entity: Entity) -> ProcessOptions:
     """The attributes and ``<env>`` children ``<executable>`` and ``<node>`` share."""
@@ -146,10 +149,15 @@ def parse_process_options(entity: Entity) -> ProcessOptions:
             env.append((child.required("name"), child.required("value")))
             leaf(child).assert_fully_read()
     options = ProcessOptions(env=env)
-    given = set(entity.attribute_names())  # most are absent: not read one by one (large files)
-    for attribute, name, how, typed in _PROCESS_ATTRIBUTES:
-        if attribute not in given:
-            continue
+    # most are absent: only the given ones are read (large files), in the table's order
+    given = []
+    for attribute in entity.attribute_names():
+        spec = _PROCESS_ORDER.get(attribute)
+        if spec is not None:
+            given.append(spec)
+    if len(given) > 1:
+        given.sort()
+    for _, attribute, name, how, typed in given:
         if how is None:
             value = entity.value(attribute)
         elif isinstance(how, tuple):

@@ -9,6 +9,8 @@ import re
 from pathlib import Path
 from typing import TYPE_CHECKING
 
+from launchkit.description.substitutions.base import Text, Value
+from launchkit.description.substitutions.grammar import parse_value
 from launchkit.errors import Location
 from launchkit.frontend.base_entity import Entity
 
@@ -39,46 +41,47 @@ class SourceFile:
     all of it, or, when the file is read as a stream, a window of whole lines that grows as
     text is read and is cut from the front once the elements there are done."""
 
-    __slots__ = ("_line_starts", "file", "first_line", "path", "text")
+    __slots__ = ("file", "first_line", "line_starts", "path", "text")
 
     def __init__(self, path: Path, text: str = "") -> None:
         self.path = path
         self.file = str(path)  # one string shared by every location in the file
         self.text = text  # the window: whole lines from ``first_line`` on
         self.first_line = 1
-        self._line_starts = [0] + [m.end() for m in _NEWLINE.finditer(text)]
+        #: Where each line of the window starts (offsets into ``text``).
+        self.line_starts = [0] + [m.end() for m in _NEWLINE.finditer(text)]
 
     def append(self, text: str) -> None:
         """Text read after the window's end."""
         start = len(self.text)
         self.text += text
-        self._line_starts.extend(start + m.end() for m in _NEWLINE.finditer(text))
+        self.line_starts.extend(start + m.end() for m in _NEWLINE.finditer(text))
 
     def forget_before(self, line: int) -> None:
         """Drop the text before 1-based ``line`` (offsets into the window change)."""
-        index = min(line - self.first_line, len(self._line_starts) - 1)
+        index = min(line - self.first_line, len(self.line_starts) - 1)
         if index <= 0:
             return
-        cut = self._line_starts[index]
+        cut = self.line_starts[index]
         self.text = self.text[cut:]
-        self._line_starts = [start - cut for start in self._line_starts[index:]]
+        self.line_starts = [start - cut for start in self.line_starts[index:]]
         self.first_line += index
 
     def line_span(self, line: int) -> tuple[int, int]:
         """Offsets in the window where 1-based ``line`` starts and ends (clamped)."""
-        starts = self._line_starts
+        starts = self.line_starts
         index = min(max(line - self.first_line, 0), len(starts) - 1)
         return starts[index], starts[index + 1] if index + 1 < len(starts) else len(self.text)
 
     def offset(self, line: int) -> int:
         """Offset in the window where 1-based ``line`` starts (clamped to the window)."""
-        index = min(max(line - self.first_line, 0), len(self._line_starts) - 1)
-        return self._line_starts[index]
+        index = min(max(line - self.first_line, 0), len(self.line_starts) - 1)
+        return self.line_starts[index]
 
     def position(self, offset: int) -> tuple[int, int]:
         """1-based (line, column) of an offset in the window."""
-        index = max(bisect.bisect_right(self._line_starts, offset) - 1, 0)
-        return index + self.first_line, offset - self._line_starts[index] + 1
+        index = max(bisect.bisect_right(self.line_starts, offset) - 1, 0)
+        return index + self.first_line, offset - self.line_starts[index] + 1
 
     def location(self, offset: int) -> Location:
         """The location of an offset in the window."""
@@ -89,23 +92,35 @@ class SourceFile:
 class XmlEntity(Entity):
     """An element of an XML launch file."""
 
-    def __init__(self, element: AnyElement, source: SourceFile) -> None:
-        super().__init__(element.tag if isinstance(element.tag, str) else str(element.tag))
+    def __init__(
+        self, element: AnyElement, source: SourceFile, sourceline: int | None = None
+    ) -> None:
+        # Entity.__init__'s fields set here: a large file makes one of these per element
+        tag = element.tag
+        self.tag = tag if isinstance(tag, str) else str(tag)
+        self._read: set[str] = set()
         self.element = element
         self.source = source
         self._attributes: dict[str, str] = dict(element.items())  # type: ignore[arg-type]
-        self._start, self._line, self._col = self._find_start()
+        if sourceline is None:
+            sourceline = element.sourceline  # type: ignore[assignment]
+        self._start, self._line, self._col = self._find_start(sourceline or 1)
         self._location: Location | None = None
 
-    def _find_start(self) -> tuple[int, int, int]:
-        """The offset in the window, line and column where the start tag begins."""
-        sourceline: int | None = self.element.sourceline  # type: ignore[assignment]
-        line = sourceline or 1
+    def _find_start(self, line: int) -> tuple[int, int, int]:
+        """The offset in the window, line and column where the start tag begins (``line``:
+        the line lxml or expat gives)."""
         source = self.source
-        start, end = source.line_span(line)
+        starts = source.line_starts
+        text = source.text
+        index = line - source.first_line
+        last = len(starts) - 1
+        if 0 <= index < last:  # the line is whole in the window (the usual case)
+            start, end = starts[index], starts[index + 1]
+        else:
+            start, end = source.line_span(line)
         opening = "<" + self.tag
         after = len(opening)
-        text = source.text
         # lxml reports the line where the start tag ends: most start tags begin on it too
         found = text.rfind(opening, start, end)
         if found >= 0 and (text[found + after : found + after + 1] in _TAG_ENDS):
@@ -155,6 +170,21 @@ class XmlEntity(Entity):
         """Attribute text as written (marks it read); XML has no typed values."""
         self._read.add(name)  # as Entity.raw does, a call shorter (a large file's hot path)
         return self._attributes.get(name)
+
+    def value(self, name: str, native: str | None = None) -> Value | None:
+        """As :meth:`Entity.value`, a call shorter (a large file's hot path)."""
+        self._read.add(name)
+        text = self._attributes.get(name)
+        if text is None:
+            return None
+        if "$" not in text and "\\" not in text:  # plain text: no location to find
+            return (Text(text),) if text else ()
+        return parse_value(text, self.attribute_location(name))
+
+    def assert_fully_read(self) -> None:
+        """As :meth:`Entity.assert_fully_read`, with the usual case (all read) in one call."""
+        if not self._read.issuperset(self._attributes):
+            super().assert_fully_read()
 
     def children(self) -> list[Entity]:
         """Child elements (comments and processing instructions skipped)."""

@@ -13,7 +13,7 @@ from __future__ import annotations
 import codecs
 import re
 from pathlib import Path
-from typing import Any, cast
+from typing import Any
 
 from lxml import etree
 
@@ -81,13 +81,13 @@ class ElementStream:
         return LaunchDescription(self.path, self.parsed, self.deprecated)
 
     def _read_events(self) -> None:
-        for _, element in self.parser.read_events():
-            element = cast(etree._Element, element)
+        element: etree._Element
+        for _, element in self.parser.read_events():  # type: ignore[assignment]
             parent = element.getparent()
             if parent is None:  # the root's end: the file's last element
                 if self.root is None:
                     self._start_root(element)
-            elif parent.getparent() is None:
+            elif parent is self.root or parent.getparent() is None:
                 if self.root is None:
                     self._start_root(parent)
                 self._top_level(parent, element)
@@ -105,11 +105,12 @@ class ElementStream:
 
     def _top_level(self, root: etree._Element, element: etree._Element) -> None:
         if self.error is None and isinstance(element.tag, str):
+            sourceline: int | None = element.sourceline  # type: ignore[assignment]
             try:
-                self.parsed.append(self.actions.parse_action(XmlEntity(element, self.source)))
+                entity = XmlEntity(element, self.source, sourceline)
+                self.parsed.append(self.actions.parse_action(entity))
             except LaunchFileError as error:
                 self.error = error  # raised at the end, unless the file is not well-formed
-            sourceline: int | None = element.sourceline  # type: ignore[assignment]
             self.keep_from = sourceline or self.keep_from
         root.remove(element)  # its action holds no part of it: the tree stays small
 
