@@ -12,8 +12,8 @@ from __future__ import annotations
 
 import os
 import signal
-from collections.abc import Iterator
-from contextlib import contextmanager
+from collections.abc import Callable, Iterator
+from contextlib import AbstractContextManager, contextmanager
 
 #: What the launcher handles: each starts an orderly shutdown, a second one escalates.
 HANDLED_SIGNALS = (signal.SIGINT, signal.SIGTERM, signal.SIGHUP, signal.SIGQUIT)
@@ -51,35 +51,49 @@ def raising() -> Iterator[None]:
             signal.signal(signum, handler)
 
 
-class _Held:
-    """Whether :func:`held` is in force, and the first signal it held back."""
+class SignalHold:
+    """A body that a signal must not cut in half (a ``$(command)`` or a process being started,
+    a shutdown being sent): a handler that is told of a signal arriving in it keeps the first
+    one, and :meth:`body` raises :class:`Interrupted` for it at the body's end."""
 
-    active = False
-    signum: int | None = None
+    def __init__(self) -> None:
+        self.active = False
+        self.signum: int | None = None
+
+    def keep(self, signum: int) -> bool:
+        """Whether ``signum`` is kept for the end of the body (one is in force)."""
+        if self.active:
+            self.signum = self.signum or signum
+        return self.active
+
+    @contextmanager
+    def body(
+        self, armed: Callable[[], bool] = lambda: True, disarm: Callable[[], None] = lambda: None
+    ) -> Iterator[None]:
+        """Hold signals in the body (when ``armed()``; nested bodies hold for the outermost),
+        then raise the first one if still ``armed()``, after ``disarm()``."""
+        if self.active or not armed():
+            yield
+            return
+        self.active = True
+        try:
+            yield
+        finally:
+            self.active = False
+            signum, self.signum = self.signum, None
+        if signum is not None and armed():
+            disarm()
+            raise Interrupted(signum)
 
 
-@contextmanager
-def held() -> Iterator[None]:
-    """Within :func:`raising`, a body that must not be cut in half (a ``$(command)`` being
-    started): a signal arriving in it raises :class:`Interrupted` at its end instead."""
-    if _Held.active:
-        yield
-        return
-    _Held.active = True
-    try:
-        yield
-    finally:
-        _Held.active = False
-        signum, _Held.signum = _Held.signum, None
-    if signum is not None:
-        raise Interrupted(signum)
+_HOLD = SignalHold()
+#: Within :func:`raising`: hold signals in the body (see :class:`SignalHold`).
+held = _HOLD.body
 
 
 def _raise(signum: int, frame: object) -> None:
-    if _Held.active:
-        _Held.signum = _Held.signum or signum
-        return
-    raise Interrupted(signum)
+    if not _HOLD.keep(signum):
+        raise Interrupted(signum)
 
 
 class SignalPipe:
@@ -89,8 +103,7 @@ class SignalPipe:
         self._read_fd, self._write_fd = os.pipe()
         self._previous: dict[int, signal._HANDLER] = {}
         self._raising = False
-        self._deferring = False
-        self._deferred: int | None = None
+        self._hold = SignalHold()
 
     @property
     def fd(self) -> int:
@@ -115,22 +128,14 @@ class SignalPipe:
         finally:
             self._raising = False
 
-    @contextmanager
-    def deferred(self) -> Iterator[None]:
+    def deferred(self) -> AbstractContextManager[None]:
         """Within :meth:`interrupting`, a body that must not be cut in half (a process being
-        started, a shutdown being sent): a signal arriving in it raises at its end instead."""
-        if not self._raising or self._deferring:
-            yield
-            return
-        self._deferring = True
-        try:
-            yield
-        finally:
-            self._deferring = False
-            signum, self._deferred = self._deferred, None
-        if signum is not None and self._raising:
-            self._raising = False
-            raise Interrupted(signum)
+        started, a shutdown being sent): a signal arriving in it raises at its end instead
+        (once, as in :meth:`interrupting`)."""
+        return self._hold.body(lambda: self._raising, self._stop_raising)
+
+    def _stop_raising(self) -> None:
+        self._raising = False
 
     def pending(self) -> list[int]:
         """The signals received since the last call, in order."""
@@ -152,10 +157,7 @@ class SignalPipe:
     def _handle(self, signum: int, frame: object) -> None:
         """Python-level handler: the wakeup fd carries the signal to the loop; while
         evaluating, also abandon the evaluation."""
-        if not self._raising:
-            return
-        if self._deferring:
-            self._deferred = self._deferred or signum
+        if not self._raising or self._hold.keep(signum):
             return
         self._raising = False
         raise Interrupted(signum)
