@@ -137,44 +137,22 @@ def startup_rows(runs: int) -> None:
             cases["empty_before"] = lambda: wall([*LAUNCHKIT, "run", str(empty)], before(env))
             cases["hundred_before"] = lambda: wall([*LAUNCHKIT, "run", str(hundred)], before(env))
         m = interleaved(cases, runs)
-    if BEFORE is not None:
-        ratio = m["empty_before"] / m["pass"]
-        row(
-            "  --before: launchkit run, empty file",
-            f"{m['empty_before'] * 1000:.0f} ms",
-            f"python -c pass {m['pass'] * 1000:.0f} ms",
-            f"{ratio:.2f}x",
-            "<= 2.5x",
-            ratio <= 2.5,
-        )
-    ratio = m["empty"] / m["pass"]
-    row(
-        "launchkit run, empty file",
-        f"{m['empty'] * 1000:.0f} ms",
-        f"python -c pass {m['pass'] * 1000:.0f} ms",
-        f"{ratio:.2f}x",
-        "<= 2.5x",
-        ratio <= 2.5,
-    )
-    if BEFORE is not None:
-        ratio = m["hundred_before"] / m["loop"]
-        row(
-            "  --before: 100 echo executables",
-            f"{m['hundred_before'] * 1000:.0f} ms",
-            f"Popen loop {m['loop'] * 1000:.0f} ms",
-            f"{ratio:.2f}x",
-            "<= 1.5x",
-            ratio <= 1.5,
-        )
-    ratio = m["hundred"] / m["loop"]
-    row(
-        "100 echo executables, start to exit",
-        f"{m['hundred'] * 1000:.0f} ms",
-        f"Popen loop {m['loop'] * 1000:.0f} ms",
-        f"{ratio:.2f}x",
-        "<= 1.5x",
-        ratio <= 1.5,
-    )
+    rows = [
+        ("launchkit run, empty file", "empty", "pass", "python -c pass", 2.5),
+        ("100 echo executables, start to exit", "hundred", "loop", "Popen loop", 1.5),
+    ]
+    for what, key, floor, floor_name, target in rows:
+        names = [("  --before: " + what, key + "_before")] if BEFORE is not None else []
+        for label, measured in [*names, (what, key)]:
+            ratio = m[measured] / m[floor]
+            row(
+                label,
+                f"{m[measured] * 1000:.0f} ms",
+                f"{floor_name} {m[floor] * 1000:.0f} ms",
+                f"{ratio:.2f}x",
+                f"<= {target}x",
+                ratio <= target,
+            )
 
 
 def cli_rows(runs: int, endpoint: str, label: str, echo: bool) -> None:
