@@ -29,6 +29,17 @@ PARAMETER_SERVICES = tuple(
         "DescribeParameters",
     )
 )
+#: The types the first wave of stock nodes (the server, spawn_entity.py, robot_state_publisher)
+#: build before the robot moves, built once here instead of in each of them.
+FIRST_WAVE_SERVICES = ("gazebo_msgs/srv/SpawnEntity", "gazebo_msgs/srv/DeleteEntity")
+FIRST_WAVE_MESSAGES = (
+    "rosgraph_msgs/msg/Clock",
+    "sensor_msgs/msg/JointState",
+    "nav_msgs/msg/Odometry",
+    "sensor_msgs/msg/LaserScan",
+    "std_msgs/msg/String",
+    "tf2_msgs/msg/TFMessage",
+)
 _PR_SET_PDEATHSIG = 1
 #: Environment variables that change what the interpreter imports: a node whose own differ
 #: from the host's starts cold.
@@ -55,9 +66,17 @@ def _die_with_parent(launcher: int) -> None:
 
 
 def _warm(modules: list[str]) -> None:
+    from launchkit.ros.msgs import get_message, get_service
+    from launchkit.ros.msgs._codec import codec
+
     preload()
     for module in modules:
         importlib.import_module(module)
+    if modules:
+        for service in FIRST_WAVE_SERVICES:
+            get_service(service)
+        for message in FIRST_WAVE_MESSAGES:
+            codec(get_message(message).__msgtype__)
     threads = len(os.listdir("/proc/self/task"))
     if threads != 1:
         print(
