@@ -81,9 +81,9 @@ class NodeHost:
         import socket
         import subprocess
 
-        path = str(self._folder() / "node-host.sock")
         listener = socket.socket(socket.AF_UNIX, socket.SOCK_SEQPACKET)
         try:
+            path = str(self._folder() / "node-host.sock")
             listener.bind(path)
             listener.listen(32)
             env = dict(os.environ, OPENBLAS_NUM_THREADS="1")  # no BLAS threads: safe to fork
@@ -93,7 +93,7 @@ class NodeHost:
                 [sys.executable, "-m", HOST_MODULE, fd, str(os.getpid()), *modules],
                 env=env,
                 stdin=subprocess.DEVNULL,
-                stdout=subprocess.DEVNULL,  # a node's stdout is a pipe or a file, as this
+                stdout=subprocess.DEVNULL,  # not a terminal: a forked node buffers as a cold one
                 pass_fds=(listener.fileno(),),
                 start_new_session=True,
             )

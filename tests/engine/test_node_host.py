@@ -15,7 +15,7 @@ from pathlib import Path
 
 from launchkit.runtime.fork_host import TRAMPOLINE
 from launchkit.testing._deadline import Deadline, scaled
-from tests.engine.launcher import alive, wait_gone
+from tests.engine.launcher import Launcher, alive, wait_gone
 
 ROOT = Path(__file__).parents[2]
 URDF = ROOT / "urdf" / "three_wheeled_robot.urdf"
@@ -146,6 +146,26 @@ def test_a_dead_host_means_cold_starts_said_once(run) -> None:  # type: ignore[n
     launcher.signal(signal.SIGINT)
     assert launcher.finish() == 0
     wait_gone(list(launcher.pids.values()))
+
+
+def test_no_host_where_none_can_be_made_and_the_nodes_start_cold(tmp_path: Path) -> None:
+    # A temporary folder too deep for a Unix socket's path: no host, one line, cold nodes.
+    deep = tmp_path / ("d" * 60) / ("e" * 60)
+    deep.mkdir(parents=True)
+    launch_file = tmp_path / "t.launch.xml"
+    launch_file.write_text(f"<launch>{_rsp()}</launch>")
+    launcher = Launcher(str(launch_file), cwd=tmp_path, env={"TMPDIR": str(deep)})
+    try:
+        launcher.wait_line(READY, timeout=scaled(60))
+        assert launcher.text.count("no node host (") == 1
+        pid = launcher.pids["robot_state_publisher-1"]
+        assert _cmdline(pid)[1:3] == ["-m", "launchkit.stock.robot_state_publisher.node"]
+        launcher.signal(signal.SIGINT)
+        assert launcher.finish() == 0
+        wait_gone([pid])
+    finally:
+        if launcher.proc.poll() is None:
+            launcher.kill()
 
 
 def _start_host(folder: Path) -> tuple[subprocess.Popen[bytes], str]:
