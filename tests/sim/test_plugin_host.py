@@ -75,11 +75,33 @@ def _wait_gone(pid: int) -> None:
         time.sleep(0.02)
 
 
+def _server_node(pid: int) -> int:
+    """The simulator server behind the launcher's process ``pid``: itself, or, when that is a
+    trampoline, the node forked from the launcher's node host that writes to its stdout."""
+    if not any(arg.endswith("fork_trampoline.py") for arg in _cmdline(pid)):
+        return pid
+    for entry in Path("/proc").iterdir():
+        try:
+            if not entry.name.isdigit() or int(entry.name) == pid:
+                continue
+            node, host = int(entry.name), _stat(int(entry.name))[0]
+            if (
+                "launchkit.stock._node_host" in _cmdline(node)
+                and _cmdline(_stat(host)[0]) != _cmdline(host)  # the host's child, not a fork's
+                and _stdout(node) == _stdout(pid)
+            ):
+                return node
+        except (FileNotFoundError, ProcessLookupError):
+            continue
+    raise AssertionError(f"no node behind the trampoline {pid}")
+
+
 def test_the_diff_drive_is_forked_from_the_pre_imported_server(launch: Any) -> None:
     handle = launch("robot_wheel", "gazebo_and_rviz.launch.xml", args={"start_rviz": False})
     controller = handle.process("gazebo_base_controller")
     controller.wait_output(DRIVING, 30)
-    server = handle.process("gzserver").pid
+    # The server itself is forked from the launcher's node host (tests/engine/test_node_host.py).
+    server = _server_node(handle.process("gzserver").pid)
     # The host: the server's forked copy (same command line, no exec), in a session of its own.
     hosts = [c for c in _children(server) if _cmdline(c) == _cmdline(server)]
     assert len(hosts) == 1, f"expected one plugin host under gzserver {server}: {hosts}"
@@ -90,7 +112,7 @@ def test_the_diff_drive_is_forked_from_the_pre_imported_server(launch: Any) -> N
     # The launcher's process for the diff drive is a trampoline; the node writing its output
     # is the host's child, never exec'ed (it has the server's command line).
     trampoline = controller.pid
-    assert any(arg.endswith("plugin_trampoline.py") for arg in _cmdline(trampoline))
+    assert any(arg.endswith("fork_trampoline.py") for arg in _cmdline(trampoline))
     node = _node_of(trampoline, host)
     assert _cmdline(node) == _cmdline(server)
     assert _stat(node)[1] == node  # its own session, as a process the launcher starts

@@ -406,7 +406,7 @@ def test_without_a_plugin_host_the_diff_drive_starts_on_its_own(
         assert spawn("my_robot").returncode == 0
         started = server.expect(r"started plugin node 'gazebo_base_controller' \(pid (\d+)\)", 20)
         cmdline = Path(f"/proc/{started.group(1)}/cmdline").read_text()
-        assert "plugin_trampoline" not in cmdline
+        assert "fork_trampoline" not in cmdline
         odom: list[Any] = []
         node.create_subscription(Odometry, "/odom", odom.append, 10)
         spin_until(node, lambda: bool(odom), 30, "/odom")

@@ -29,10 +29,11 @@ from pathlib import Path
 from typing import Any
 
 from launchkit.stock import _entry
+from launchkit.stock._node_host import preload
 from launchkit.stock.gazebo_ros import messages
 from launchkit.stock.gazebo_ros._shutdown import shutdown_within
 from launchkit.stock.gazebo_ros.camera_node import CameraNodeParams
-from launchkit.stock.gazebo_ros.plugin_host import PluginHost, preload
+from launchkit.stock.gazebo_ros.plugin_host import PluginHost
 from launchkit.stock.gazebo_ros.plugin_processes import PluginProcesses
 from launchkit.stock.gazebo_ros.server_options import ServerOptions, UsageError, parse_server_args
 from launchkit.stock.gazebo_ros.sim.engine import Entity, Simulation, SimulationError
