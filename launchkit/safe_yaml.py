@@ -65,7 +65,8 @@ class Node:
         self,
         kind: str,
         file: str,
-        mark: Any,
+        line: int,
+        col: int,
         value: Any = None,
         style: str | None = None,
         tag: str = "",
@@ -73,8 +74,8 @@ class Node:
     ) -> None:
         self.kind = kind  # "map", "seq" or "scalar"
         self.file = file
-        self.line: int = mark.line + 1
-        self.col: int = mark.column + 1
+        self.line = line  # 1-based, as the file's text is counted
+        self.col = col
         self.value = value
         self.style = style
         self.tag = tag
@@ -266,8 +267,10 @@ class _Composer:
             elif kind is yaml.MappingStartEvent or kind is yaml.SequenceStartEvent:
                 name = "map" if kind is yaml.MappingStartEvent else "seq"
                 self._check_tag(event, name)
-                opened = Node(name, self.file, event.start_mark)
-                self._anchor(event, opened)
+                mark = event.start_mark
+                opened = Node(name, self.file, mark.line + 1, mark.column + 1)
+                if event.anchor is not None:
+                    self.anchors[event.anchor] = opened
                 stack.append((opened, []))
                 if len(stack) + depth > MAX_DEPTH:
                     raise LaunchFileError(
@@ -320,7 +323,8 @@ class _Composer:
                 self.where(event.start_mark),
                 expected="a plain scalar (text, number, boolean)",
             ) from None
-        return Node("scalar", self.file, event.start_mark, value, event.style, tag, event.value)
+        line, col = event.start_mark.line + 1, event.start_mark.column + 1
+        return Node("scalar", self.file, line, col, value, event.style, tag, event.value)
 
     def _check_tag(self, event: yaml.CollectionStartEvent, kind: str) -> None:
         if event.tag is not None and event.tag != "!" and event.tag not in _DEFAULT_TAGS:
@@ -329,10 +333,6 @@ class _Composer:
                 self.where(event.start_mark),
                 expected=f"a plain {'list' if kind == 'seq' else 'mapping'}",
             )
-
-    def _anchor(self, event: yaml.NodeEvent, node: Node) -> None:
-        if event.anchor is not None:
-            self.anchors[event.anchor] = node
 
     def _alias(self, event: yaml.AliasEvent) -> Node:
         where = self.where(event.start_mark)
