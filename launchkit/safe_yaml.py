@@ -323,7 +323,8 @@ class _Composer:
                 self.where(event.start_mark),
                 expected="a plain scalar (text, number, boolean)",
             ) from None
-        line, col = event.start_mark.line + 1, event.start_mark.column + 1
+        mark: Any = event.start_mark  # the parser's events always have one
+        line, col = mark.line + 1, mark.column + 1
         return Node("scalar", self.file, line, col, value, event.style, tag, event.value)
 
     def _check_tag(self, event: yaml.CollectionStartEvent, kind: str) -> None:

@@ -30,9 +30,10 @@ _BAD = re.compile(
     "[^\n\x20-\x7e\xa0-\u2027\u202a-\ud7ff\ue000-\ufefe\uff00-\ufffd\U00010000-\U0010ffff]"
 )
 #: Plain scalars: a first character no indicator, a ``-`` only before a digit or ``.``; then
-#: letters, digits and a few safe signs (no ``:``, ``#``, quotes or brackets; no ``,`` in flow).
+#: letters, digits and a few safe signs (no ``:``, ``#`` or brackets; no ``,`` or quotes in
+#: flow collections, where they are split, not scanned).
 _FIRST = r"(?:[\w./~$(+]|-[0-9.])"
-PLAIN = re.compile(_FIRST + r"[\w./~$()+=@ ,;\-]*")
+PLAIN = re.compile(_FIRST + r"[\w./~$()+=@ ,;'\"\-]*")
 _FLOW_PLAIN = re.compile(_FIRST + r"[\w./~$()+=@ ;\-]*")
 #: A block mapping's key: a plain scalar of the same characters.
 KEY = re.compile(_FIRST + r"[\w./~$()+=@ ,;\-]*")
@@ -171,7 +172,7 @@ class FlowReader:
                 if found is None:
                     raise GiveUp
                 name = found[0].rstrip(" ")
-                after = at + len(name)
+                after = at + len(found[0])
                 if text[after : after + 2] != ": " or len(name) > MAX_KEY_LENGTH:
                     raise GiveUp
                 inside.append(self.plain(name, row + 1, col + at + 1))
