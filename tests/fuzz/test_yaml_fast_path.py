@@ -135,7 +135,7 @@ def block_map(draw: st.DrawFn, indent: int, depth: int, first: str = "") -> list
     lines: list[str] = []
     for number in range(draw(st.integers(1, 3))):
         head = first if number == 0 and first else " " * indent
-        key = draw(key_text)
+        key = draw(key_text) + draw(st.sampled_from(["", "", " "]))
         nested = depth < 3 and draw(st.integers(0, 3)) == 0
         if not nested:
             lines.append(comment(draw, f"{head}{key}: {inline(draw)}"))
