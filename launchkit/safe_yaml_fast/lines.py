@@ -8,6 +8,7 @@ from launchkit.safe_yaml import Node
 from launchkit.safe_yaml_fast.scalars import (
     KEY,
     MAX_DEPTH,
+    MAX_KEY_LENGTH,
     PLAIN,
     QUOTED,
     STR,
@@ -108,6 +109,7 @@ class LineReader(FlowReader):
             or "'" in inner
             or '"' in inner
             or name[-1:] == " "
+            or len(name) > MAX_KEY_LENGTH
             or not KEY.fullmatch(name)
         ):
             return None

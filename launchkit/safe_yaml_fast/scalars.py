@@ -14,7 +14,8 @@ from launchkit.safe_yaml import Node
 #: How deep this reader follows mappings and lists before it gives up (far under
 #: :data:`launchkit.safe_yaml.MAX_DEPTH`, whose error is then the composer's).
 MAX_DEPTH = 30
-#: Keys longer than this are left to PyYAML (libyaml refuses simple keys over 1024 characters).
+#: Keys longer than this, spaces before the colon included, are left to PyYAML (libyaml refuses
+#: a block key whose colon is over 1024 characters after its start).
 MAX_KEY_LENGTH = 1000
 
 STR = "tag:yaml.org,2002:str"
@@ -67,7 +68,7 @@ def split_key(text: str) -> tuple[str, str | None, int] | None:
     else:
         return None
     key = name.rstrip(" ")
-    if len(key) > MAX_KEY_LENGTH or not KEY.fullmatch(key):
+    if len(name) > MAX_KEY_LENGTH or not KEY.fullmatch(key):
         return None
     return key, value, offset
 
@@ -137,7 +138,7 @@ class FlowReader:
             if is_map:
                 name, colon, rest = text.partition(": ")
                 key = name.rstrip(" ")
-                if not colon or ":" in key or len(key) > MAX_KEY_LENGTH:
+                if not colon or ":" in key or len(name) > MAX_KEY_LENGTH:
                     raise GiveUp
                 if key[:1] in _TEXT_FIRST:
                     append(Node("scalar", file, line, at, key, _PLAIN_STYLE, STR, key))
@@ -173,7 +174,7 @@ class FlowReader:
                     raise GiveUp
                 name = found[0].rstrip(" ")
                 after = at + len(found[0])
-                if text[after : after + 2] != ": " or len(name) > MAX_KEY_LENGTH:
+                if text[after : after + 2] != ": " or len(found[0]) > MAX_KEY_LENGTH:
                     raise GiveUp
                 inside.append(self.plain(name, row + 1, col + at + 1))
                 at = _SPACES.match(text, after + 2).end()  # type: ignore[union-attr]
