@@ -113,23 +113,19 @@ class LineReader(FlowReader):
             or not KEY.fullmatch(name)
         ):
             return None
-        saved = (self.row, self.indent, body)
-        row = self.row + 1
+        row = self.row
         file = self.file
-        plain = self.plain
-        inside = self.scalars(inner, True, row - 1, indent + brace + 3)
-        value = Node("map", file, row, indent + brace + 3)
-        value.size += len(inside)
-        value.pairs = list(zip(inside[0::2], inside[1::2], strict=True))
+        value = Node("map", file, row + 1, indent + brace + 3)
+        value.pairs = pairs = self.scalar_pairs(inner, row, indent + brace + 3)
+        value.size += 2 * len(pairs)
         value.closed = True
-        key = plain(name, row, indent + 3)
-        item = Node("map", file, row, indent + 3)
+        item = Node("map", file, row + 1, indent + 3)
         item.size += 1 + value.size
-        item.pairs = [(key, value)]
+        item.pairs = [(self.plain(name, row + 1, indent + 3), value)]
         item.closed = True
         self.advance()
         if self.indent > indent:  # more keys of the item below it: the general path reads it
-            self.row, self.indent, self.body = saved
+            self.row, self.indent, self.body = row, indent, body
             return None
         return item
 

@@ -111,50 +111,61 @@ class FlowReader:
         close = "}" if is_map else "]"
         end = text.find(close, at)
         if end > 0 and _simple(text, at + 1, end, is_map):
-            inside = self.scalars(text[at + 1 : end], is_map, row, col + at + 1)
-            node.size += len(inside)
+            if is_map:
+                node.pairs = self.scalar_pairs(text[at + 1 : end], row, col + at + 1)
+                node.size += 2 * len(node.pairs)
+            else:
+                node.items = self.scalar_items(text[at + 1 : end], row, col + at + 1)
+                node.size += len(node.items)
         else:
             inside, end = self.entries(text, at, row, col, depth, close)
             for child in inside:
                 node.size += child.size
-        if is_map:
-            node.pairs = list(zip(inside[0::2], inside[1::2], strict=True))
-        else:
-            node.items = inside
+            if is_map:
+                node.pairs = list(zip(inside[0::2], inside[1::2], strict=True))
+            else:
+                node.items = inside
         node.closed = True
         return node, end + 1
 
-    def scalars(self, inside: str, is_map: bool, row: int, col: int) -> list[Node]:
-        """The plain scalars of a flow collection holding nothing else (``inside`` its text
-        between the brackets, from column ``col``): split, not scanned, and typed inline
-        (:meth:`plain` unrolled: most scalars of a large file are here)."""
+    def scalar_pairs(self, inside: str, row: int, col: int) -> list[tuple[Node, Node]]:
+        """The pairs of a flow mapping of plain scalars only (``inside`` its text between the
+        braces, from column ``col``): split, not scanned, and typed inline (:meth:`plain`
+        unrolled: most scalars of a large file are here)."""
+        pairs: list[tuple[Node, Node]] = []
+        if not inside.strip(" "):
+            return pairs
+        line, file, typed, append = row + 1, self.file, self.typed, pairs.append
+        for piece in inside.split(","):
+            name = piece.lstrip(" ")
+            at = col + len(piece) - len(name) + 1
+            name, colon, rest = name.partition(": ")
+            key = name.rstrip(" ")
+            text = rest.strip(" ")
+            if not colon or ":" in key or ":" in text or len(name) > MAX_KEY_LENGTH:
+                raise GiveUp
+            if key[:1] in _TEXT_FIRST:
+                key_node = Node("scalar", file, line, at, key, _PLAIN_STYLE, STR, key)
+            else:
+                tag, value = typed(key)
+                key_node = Node("scalar", file, line, at, value, _PLAIN_STYLE, tag, key)
+            at += len(name) + 2 + len(rest) - len(rest.lstrip(" "))
+            if text[:1] in _TEXT_FIRST:
+                append((key_node, Node("scalar", file, line, at, text, _PLAIN_STYLE, STR, text)))
+            else:
+                tag, value = typed(text)
+                append((key_node, Node("scalar", file, line, at, value, _PLAIN_STYLE, tag, text)))
+            col += len(piece) + 1
+        return pairs
+
+    def scalar_items(self, inside: str, row: int, col: int) -> list[Node]:
+        """The items of a flow list of plain scalars only, as :meth:`scalar_pairs` reads them."""
         nodes: list[Node] = []
         if not inside.strip(" "):
             return nodes
-        line, file, typed, append = row + 1, self.file, self.typed, nodes.append
         for piece in inside.split(","):
             text = piece.lstrip(" ")
-            at = col + len(piece) - len(text) + 1
-            if is_map:
-                name, colon, rest = text.partition(": ")
-                key = name.rstrip(" ")
-                if not colon or ":" in key or len(name) > MAX_KEY_LENGTH:
-                    raise GiveUp
-                if key[:1] in _TEXT_FIRST:
-                    append(Node("scalar", file, line, at, key, _PLAIN_STYLE, STR, key))
-                else:
-                    tag, value = typed(key)
-                    append(Node("scalar", file, line, at, value, _PLAIN_STYLE, tag, key))
-                text = rest.lstrip(" ")
-                at += len(name) + 2 + len(rest) - len(text)
-            text = text.rstrip(" ")
-            if ":" in text:
-                raise GiveUp
-            if text[:1] in _TEXT_FIRST:
-                append(Node("scalar", file, line, at, text, _PLAIN_STYLE, STR, text))
-            else:
-                tag, value = typed(text)
-                append(Node("scalar", file, line, at, value, _PLAIN_STYLE, tag, text))
+            nodes.append(self.plain(text.rstrip(" "), row + 1, col + len(piece) - len(text) + 1))
             col += len(piece) + 1
         return nodes
 
