@@ -33,7 +33,7 @@ MAX_ALIAS_NODES = 100_000
 MAX_NUMBER_LENGTH = 1000
 
 _Loader: type[yaml.SafeLoader] = getattr(yaml, "CSafeLoader", yaml.SafeLoader)
-_MERGE_TAG = "tag:yaml.org,2002:merge"
+MERGE_TAG = "tag:yaml.org,2002:merge"
 _STR_TAG = "tag:yaml.org,2002:str"
 _DEFAULT_TAGS = {"tag:yaml.org,2002:map", "tag:yaml.org,2002:seq"}
 #: The first characters of plain scalars the resolver may read as something but text; every
@@ -93,7 +93,7 @@ class Node:
     @property
     def is_merge_key(self) -> bool:
         """Whether this is the ``<<`` of a merge."""
-        return self.kind == "scalar" and self.tag == _MERGE_TAG
+        return self.kind == "scalar" and self.tag == MERGE_TAG
 
     @property
     def text_location(self) -> Location:
@@ -227,7 +227,7 @@ class _Composer:
         if not self._plain_start(yaml.MappingStartEvent, "map"):
             raise NotAList
         name = self._node(1)
-        if name.kind != "scalar" or name.value != key or name.tag == _MERGE_TAG:
+        if name.kind != "scalar" or name.value != key or name.tag == MERGE_TAG:
             raise NotAList
         if not self._plain_start(yaml.SequenceStartEvent, "seq"):
             raise NotAList
@@ -305,14 +305,14 @@ class _Composer:
                 tag = _STR_TAG  # no implicit type starts with this character: text
             else:
                 tag = self.loader.resolve(yaml.ScalarNode, text, event.implicit)
-        if tag not in (_STR_TAG, _MERGE_TAG) and len(event.value) > MAX_NUMBER_LENGTH:
+        if tag not in (_STR_TAG, MERGE_TAG) and len(event.value) > MAX_NUMBER_LENGTH:
             raise LaunchFileError(
                 f"an unquoted {tag.rsplit(':', 1)[-1]} of {len(event.value)} characters",
                 self.where(event.start_mark),
                 expected=f"at most {MAX_NUMBER_LENGTH} characters, or quotes to make it text",
             )
         try:
-            if tag in (_STR_TAG, _MERGE_TAG):
+            if tag in (_STR_TAG, MERGE_TAG):
                 value = event.value
             else:
                 scalar = yaml.ScalarNode(tag, event.value, style=event.style)

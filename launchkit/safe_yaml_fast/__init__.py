@@ -34,18 +34,13 @@ def list_items(text: str, path: Path, key: str) -> Iterator[Node]:
     if len(text) < THRESHOLD:
         yield from safe_yaml.list_items(text, path, key)
         return
-    given = 0
-    items = LineReader(text, str(path)).items(key)
-    while True:
-        try:
-            item = next(items)
-        except StopIteration:
-            return
-        except GiveUp:
-            break
-        yield item
-        given += 1
+    reader = LineReader(text, str(path))
+    try:
+        yield from reader.items(key)
+        return
+    except GiveUp:
+        pass
     composed = safe_yaml.list_items(text, path, key)
-    for _ in itertools.islice(composed, given):  # the same items again: errors stay in order
+    for _ in itertools.islice(composed, reader.given):  # the same again: errors stay in order
         pass
     yield from composed

@@ -25,6 +25,7 @@ class LineReader(FlowReader):
 
     def __init__(self, text: str, file: str) -> None:
         super().__init__(file)
+        self.given = 0  # items given by items()
         self.lines = text.split("\n")
         bad = first_bad(text)
         self.stop = len(self.lines) if bad is None else text.count("\n", 0, bad)
@@ -68,8 +69,11 @@ class LineReader(FlowReader):
         indent = self.indent
         if indent < 0 or not self.is_entry():
             raise GiveUp
-        while self.indent == indent and self.is_entry():
-            yield self.one_line(indent) or self.entry(indent, 2)
+        one_line, entry = self.one_line, self.entry
+        while self.indent == indent and self.body.startswith("- "):
+            item = one_line(indent) or entry(indent, 2)
+            self.given += 1  # before the yield: a give-up comes after the consumer resumes
+            yield item
         if self.indent >= 0:
             raise GiveUp  # a second key or document, or an error: the composer's to say
 

@@ -23,7 +23,7 @@ from launchkit.errors import LaunchFileError, Location
 from launchkit.frontend.base_entity import Entity
 from launchkit.frontend.yaml.param_value import param_value
 from launchkit.frontend.yaml.scalars import describe, node_text
-from launchkit.safe_yaml import Node
+from launchkit.safe_yaml import MERGE_TAG, Node
 
 _NATIVE_TYPES: dict[str, tuple[type, ...]] = {"bool": (bool,), "float": (float,), "int": (int,)}
 _EXPECTED = {
@@ -74,7 +74,10 @@ class YamlEntity(Entity):
                     expected="each key once",
                 )
             seen[name] = key
-            if name == "children" or _is_entity_list(value):
+            # _is_entity_list unrolled: a large file has a few keys per item
+            if name == "children" or (
+                value.kind == "seq" and value.items and value.items[0].kind == "map"
+            ):
                 self._entries.append((name, value))
             else:
                 self._attributes[name] = (key, value)
@@ -222,7 +225,10 @@ def _is_entity_list(node: Node) -> bool:
 
 def _merged_pairs(node: Node) -> Sequence[tuple[Node, Node]]:
     """The mapping's pairs with ``<<`` merges applied (its own keys win, as in YAML)."""
-    if not any(key.is_merge_key for key, _ in node.pairs):
+    for key, _ in node.pairs:  # any(key.is_merge_key ...), without a generator per mapping
+        if key.tag == MERGE_TAG and key.kind == "scalar":
+            break
+    else:
         return node.pairs
     own = [(k, v) for k, v in node.pairs if not k.is_merge_key]
     names = {k.value for k, _ in own}
