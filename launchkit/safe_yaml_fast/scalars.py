@@ -136,6 +136,33 @@ class FlowReader:
         if not inside.strip(" "):
             return pairs
         line, file, typed, append = row + 1, self.file, self.typed, pairs.append
+        if (
+            inside[0] != " "
+            and inside[-1] != " "
+            and "  " not in inside
+            and " ," not in inside
+            and " :" not in inside
+            and inside.count(",") == inside.count(", ")
+        ):  # written as most are, ``k: v, k: v``: no spaces to strip
+            at = col + 1
+            for piece in inside.split(", "):
+                key, colon, text = piece.partition(": ")
+                if not colon or ":" in key or ":" in text or len(key) > MAX_KEY_LENGTH:
+                    raise GiveUp
+                if key[:1] in _TEXT_FIRST:
+                    key_node = Node("scalar", file, line, at, key, _PLAIN_STYLE, STR, key)
+                else:
+                    tag, value = typed(key)
+                    key_node = Node("scalar", file, line, at, value, _PLAIN_STYLE, tag, key)
+                where = at + len(key) + 2
+                if text[:1] in _TEXT_FIRST:
+                    node = Node("scalar", file, line, where, text, _PLAIN_STYLE, STR, text)
+                else:
+                    tag, value = typed(text)
+                    node = Node("scalar", file, line, where, value, _PLAIN_STYLE, tag, text)
+                append((key_node, node))
+                at += len(piece) + 2
+            return pairs
         for piece in inside.split(","):
             name = piece.lstrip(" ")
             at = col + len(piece) - len(name) + 1
