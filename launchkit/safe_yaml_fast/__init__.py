@@ -39,8 +39,9 @@ def list_items(text: str, path: Path, key: str) -> Iterator[Node]:
         yield from reader.items(key)
         return
     except GiveUp:
-        pass
+        given = reader.given
+    del reader  # its lines: the composer reads the text itself
     composed = safe_yaml.list_items(text, path, key)
-    for _ in itertools.islice(composed, reader.given):  # the same again: errors stay in order
+    for _ in itertools.islice(composed, given):  # the same items again: errors stay in order
         pass
     yield from composed
