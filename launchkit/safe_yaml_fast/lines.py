@@ -26,6 +26,7 @@ class LineReader(FlowReader):
     def __init__(self, text: str, file: str) -> None:
         super().__init__(file)
         self.given = 0  # items given by items()
+        self.tags: set[str] = set()  # the names one_line has found to be plain keys
         self.lines = text.split("\n")
         bad = first_bad(text)
         self.stop = len(self.lines) if bad is None else text.count("\n", 0, bad)
@@ -112,11 +113,14 @@ class LineReader(FlowReader):
             or "]" in inner
             or "'" in inner
             or '"' in inner
-            or name[-1:] == " "
-            or len(name) > MAX_KEY_LENGTH
-            or not KEY.fullmatch(name)
+            or (
+                name not in self.tags
+                and (name[-1:] == " " or len(name) > MAX_KEY_LENGTH or not KEY.fullmatch(name))
+            )
         ):
             return None
+        if len(self.tags) < 1000:  # a large file has a few tags: each checked once
+            self.tags.add(name)
         row = self.row
         file = self.file
         value = Node("map", file, row + 1, indent + brace + 3)

@@ -136,6 +136,7 @@ class FlowReader:
         if not inside.strip(" "):
             return pairs
         line, file, typed, append = row + 1, self.file, self.typed, pairs.append
+        types = self.types
         if (
             inside[0] != " "
             and inside[-1] != " "
@@ -152,7 +153,7 @@ class FlowReader:
                 if key[:1] in _TEXT_FIRST:
                     key_node = Node("scalar", file, line, at, key, _PLAIN_STYLE, STR, key)
                 else:
-                    tag, value = typed(key)
+                    tag, value = types.get(key) or typed(key)
                     key_node = Node("scalar", file, line, at, value, _PLAIN_STYLE, tag, key)
                 where = at + len(key) + 2
                 if text[:1] in _TEXT_FIRST:
