@@ -33,7 +33,7 @@ MAX_ALIAS_NODES = 100_000
 MAX_NUMBER_LENGTH = 1000
 
 _Loader: type[yaml.SafeLoader] = getattr(yaml, "CSafeLoader", yaml.SafeLoader)
-_MERGE_TAG = "tag:yaml.org,2002:merge"
+MERGE_TAG = "tag:yaml.org,2002:merge"
 _STR_TAG = "tag:yaml.org,2002:str"
 _DEFAULT_TAGS = {"tag:yaml.org,2002:map", "tag:yaml.org,2002:seq"}
 #: The first characters of plain scalars the resolver may read as something but text; every
@@ -65,7 +65,8 @@ class Node:
         self,
         kind: str,
         file: str,
-        mark: Any,
+        line: int,
+        col: int,
         value: Any = None,
         style: str | None = None,
         tag: str = "",
@@ -73,8 +74,8 @@ class Node:
     ) -> None:
         self.kind = kind  # "map", "seq" or "scalar"
         self.file = file
-        self.line: int = mark.line + 1
-        self.col: int = mark.column + 1
+        self.line = line  # 1-based, as the file's text is counted
+        self.col = col
         self.value = value
         self.style = style
         self.tag = tag
@@ -92,7 +93,7 @@ class Node:
     @property
     def is_merge_key(self) -> bool:
         """Whether this is the ``<<`` of a merge."""
-        return self.kind == "scalar" and self.tag == _MERGE_TAG
+        return self.kind == "scalar" and self.tag == MERGE_TAG
 
     @property
     def text_location(self) -> Location:
@@ -226,7 +227,7 @@ class _Composer:
         if not self._plain_start(yaml.MappingStartEvent, "map"):
             raise NotAList
         name = self._node(1)
-        if name.kind != "scalar" or name.value != key or name.tag == _MERGE_TAG:
+        if name.kind != "scalar" or name.value != key or name.tag == MERGE_TAG:
             raise NotAList
         if not self._plain_start(yaml.SequenceStartEvent, "seq"):
             raise NotAList
@@ -266,8 +267,10 @@ class _Composer:
             elif kind is yaml.MappingStartEvent or kind is yaml.SequenceStartEvent:
                 name = "map" if kind is yaml.MappingStartEvent else "seq"
                 self._check_tag(event, name)
-                opened = Node(name, self.file, event.start_mark)
-                self._anchor(event, opened)
+                mark = event.start_mark
+                opened = Node(name, self.file, mark.line + 1, mark.column + 1)
+                if event.anchor is not None:
+                    self.anchors[event.anchor] = opened
                 stack.append((opened, []))
                 if len(stack) + depth > MAX_DEPTH:
                     raise LaunchFileError(
@@ -302,14 +305,14 @@ class _Composer:
                 tag = _STR_TAG  # no implicit type starts with this character: text
             else:
                 tag = self.loader.resolve(yaml.ScalarNode, text, event.implicit)
-        if tag not in (_STR_TAG, _MERGE_TAG) and len(event.value) > MAX_NUMBER_LENGTH:
+        if tag not in (_STR_TAG, MERGE_TAG) and len(event.value) > MAX_NUMBER_LENGTH:
             raise LaunchFileError(
                 f"an unquoted {tag.rsplit(':', 1)[-1]} of {len(event.value)} characters",
                 self.where(event.start_mark),
                 expected=f"at most {MAX_NUMBER_LENGTH} characters, or quotes to make it text",
             )
         try:
-            if tag in (_STR_TAG, _MERGE_TAG):
+            if tag in (_STR_TAG, MERGE_TAG):
                 value = event.value
             else:
                 scalar = yaml.ScalarNode(tag, event.value, style=event.style)
@@ -320,7 +323,9 @@ class _Composer:
                 self.where(event.start_mark),
                 expected="a plain scalar (text, number, boolean)",
             ) from None
-        return Node("scalar", self.file, event.start_mark, value, event.style, tag, event.value)
+        mark: Any = event.start_mark  # the parser's events always have one
+        line, col = mark.line + 1, mark.column + 1
+        return Node("scalar", self.file, line, col, value, event.style, tag, event.value)
 
     def _check_tag(self, event: yaml.CollectionStartEvent, kind: str) -> None:
         if event.tag is not None and event.tag != "!" and event.tag not in _DEFAULT_TAGS:
@@ -329,10 +334,6 @@ class _Composer:
                 self.where(event.start_mark),
                 expected=f"a plain {'list' if kind == 'seq' else 'mapping'}",
             )
-
-    def _anchor(self, event: yaml.NodeEvent, node: Node) -> None:
-        if event.anchor is not None:
-            self.anchors[event.anchor] = node
 
     def _alias(self, event: yaml.AliasEvent) -> Node:
         where = self.where(event.start_mark)

@@ -32,6 +32,19 @@ CASES: dict[str, tuple[str, int, int, str]] = {
         25,
         "key 'value' of 'let' is the float 1.5",
     ),
+    "text key given a list": (
+        "- let: {name: [a], value: b}\n",
+        3,
+        15,
+        "key 'name' of 'let' is a list",
+    ),
+    "text key given a mapping": (
+        "- let: {name: x, value: {a: b}}\n",
+        3,
+        25,
+        "key 'value' of 'let' is a mapping",
+    ),
+    "text key given null": ("- let: {name: ~, value: b}\n", 3, 3, "'let' is missing key 'name'"),
     "float key given an integer": (
         "- timer: {period: 5, children: []}\n",
         3,

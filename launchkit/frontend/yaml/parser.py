@@ -15,7 +15,8 @@ from launchkit.errors import LaunchFileError, Location
 from launchkit.frontend.action_parser import ActionParser
 from launchkit.frontend.yaml.entity import YamlEntity, action_entity
 from launchkit.frontend.yaml.scalars import describe
-from launchkit.safe_yaml import NotAList, compose, list_items, read_text
+from launchkit.safe_yaml import NotAList, compose, read_text
+from launchkit.safe_yaml_fast import list_items
 
 #: How many items of a large ``launch:`` list are composed before their actions are built
 #: (memory stays bounded; composing and building by turns one item at a time measured
