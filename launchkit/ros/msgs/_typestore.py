@@ -22,6 +22,7 @@ from rosbags.typesys.store import Typestore
 
 from launchkit.ros.msgs._defcache import Definitions, definitions
 from launchkit.ros.msgs._srv_defs import SERVICES
+from launchkit.ros.msgs._store import LazyTypestore
 
 _BASE, _NAME, _ARRAY, _SEQUENCE = 1, 2, 3, 4
 
@@ -99,7 +100,7 @@ def known_names(kind: str) -> set[str]:
 def _built() -> Typestore:
     global _store
     if _store is None:
-        _store = Typestore()
+        _store = LazyTypestore()
     return _store
 
 
