@@ -246,7 +246,29 @@ def _launch_candidates(share: Path, filename: str) -> list[Path]:
     return [share / folder / filename if folder else share / filename for folder in LAUNCH_FOLDERS]
 
 
+#: The packages :func:`_load_entry_points` found, per ``sys.path`` and the times its folders
+#: last changed (an install or uninstall changes its folder's): ``launchkit run`` makes a
+#: package index to find the file and another to run it, and reading every installed
+#: distribution's entry points costs 30-70 ms each time.
+_FOUND: dict[tuple[tuple[str, int], ...], dict[str, PythonPackage]] = {}
+
+
 def _load_entry_points() -> dict[str, PythonPackage]:
+    key = tuple((entry, _changed(entry)) for entry in sys.path)
+    if key not in _FOUND:
+        _FOUND.clear()
+        _FOUND[key] = _read_entry_points()
+    return dict(_FOUND[key])
+
+
+def _changed(folder: str) -> int:
+    try:
+        return os.stat(folder or ".").st_mtime_ns
+    except OSError:
+        return 0
+
+
+def _read_entry_points() -> dict[str, PythonPackage]:
     from importlib.metadata import entry_points
 
     found: dict[str, PythonPackage] = {}
