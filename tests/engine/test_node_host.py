@@ -193,17 +193,21 @@ def test_a_forked_node_gets_its_argv_env_cwd_streams_and_status(tmp_path: Path) 
     probe = [*command, "tests.engine.node_host_probe"]
     workdir = tmp_path / "work"
     workdir.mkdir()
-    try:
-        done = subprocess.run(
-            [*probe, "3", "two words"],
-            input="hello\n",
+
+    def run(args: list[str], stdin: str, **more_env: str) -> subprocess.CompletedProcess[str]:
+        return subprocess.run(
+            [*probe, *args],
+            input=stdin,
             capture_output=True,
             text=True,
             cwd=workdir,
-            env=env,
+            env={**env, **more_env},
             timeout=scaled(60),
             check=False,
         )
+
+    try:
+        done = run(["3", "two words"], "hello\n")
         assert done.returncode == 3, done
         assert f"argv=['3', 'two words'] cwd={workdir} env=from the launch" in done.stdout
         assert "stdin=hello preloaded=True" in done.stdout
@@ -222,29 +226,11 @@ def test_a_forked_node_gets_its_argv_env_cwd_streams_and_status(tmp_path: Path) 
         waiting.stdout.close()
         wait_gone([node])
         # Other interpreter settings: no fork, the command runs cold.
-        other = subprocess.run(
-            [*probe, "0"],
-            input="x\n",
-            capture_output=True,
-            text=True,
-            cwd=workdir,
-            env={**env, "PYTHONHASHSEED": "4321"},
-            timeout=scaled(60),
-            check=False,
-        )
+        other = run(["0"], "x\n", PYTHONHASHSEED="4321")
         assert other.returncode == 0 and "preloaded=False" in other.stdout, other
     finally:
         host.kill()
         host.wait()
     # No host: the trampoline runs the command itself.
-    cold = subprocess.run(
-        [*probe, "0"],
-        input="x\n",
-        capture_output=True,
-        text=True,
-        cwd=workdir,
-        env=env,
-        timeout=scaled(60),
-        check=False,
-    )
+    cold = run(["0"], "x\n")
     assert cold.returncode == 0 and "preloaded=False" in cold.stdout, cold
