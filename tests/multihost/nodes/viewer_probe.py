@@ -5,6 +5,8 @@ from __future__ import annotations
 
 import asyncio
 import sys
+import time
+import urllib.error
 import urllib.request
 from pathlib import Path
 
@@ -42,9 +44,25 @@ async def _receive(url: str, timeout: float) -> FoxgloveClient:
         return client
 
 
+def _page(url: str, timeout: float) -> tuple[int, int]:
+    """The page's status and size; the agent says it started rviz2 before rviz2 listens, so a
+    refused connection is tried again until ``timeout``."""
+    deadline = time.monotonic() + timeout
+    while True:
+        try:
+            with urllib.request.urlopen(url, timeout=20) as page:
+                return page.status, len(page.read())
+        except urllib.error.URLError as error:
+            if not isinstance(error.reason, ConnectionRefusedError):
+                raise
+            if time.monotonic() > deadline:
+                raise
+        time.sleep(0.2)
+
+
 def main(port: int) -> None:
-    with urllib.request.urlopen(f"http://127.0.0.1:{port}/", timeout=20) as page:
-        print(f"page: {page.status} {len(page.read())} bytes", flush=True)
+    status, size = _page(f"http://127.0.0.1:{port}/", 60)
+    print(f"page: {status} {size} bytes", flush=True)
     client = asyncio.run(_receive(f"ws://127.0.0.1:{port}", 60))
     description = deserialize(client.received["/robot_description"][0], "std_msgs/msg/String")
     print(f"robot: {'three_wheeled_robot' in description.data}", flush=True)
