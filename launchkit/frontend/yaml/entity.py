@@ -76,7 +76,7 @@ class YamlEntity(Entity):
                     expected="each key once",
                 )
             seen[name] = key
-            # _is_entity_list unrolled: a large file has a few keys per item
+            # a list whose first item is a mapping holds sub-entities, as ROS's YAML reader decides
             if name == "children" or (
                 value.kind == "seq" and value.items and value.items[0].kind == "map"
             ):
@@ -239,11 +239,6 @@ def action_entity(parent: str, item: Node) -> YamlEntity:
             f"a tag in '{parent}' is {describe(key)}", key.location, expected="a tag name"
         )
     return YamlEntity(key.value, value, key.location)
-
-
-def _is_entity_list(node: Node) -> bool:
-    """A list whose first item is a mapping: sub-entities, as ROS's YAML reader decides."""
-    return node.kind == "seq" and bool(node.items) and node.items[0].kind == "map"
 
 
 def _merged_pairs(node: Node) -> Sequence[tuple[Node, Node]]:

@@ -27,7 +27,7 @@ from rosbags.serde.ros1 import (
 from rosbags.typesys.base import normalize_fieldname
 from rosbags.typesys.store import Typestore
 
-_HOST = "le" if sys.byteorder == "little" else "be"
+_HOST, _OTHER = ("le", "be") if sys.byteorder == "little" else ("be", "le")
 
 
 def _on_first_call(make: Callable[[], Any]) -> Any:
@@ -42,10 +42,11 @@ def _on_first_call(make: Callable[[], Any]) -> Any:
     return call
 
 
-def _byte_order(order: str, host: Callable[[], Any], other: Callable[[], Any]) -> tuple[Any, Any]:
-    """(little-endian, big-endian) functions: the host's made now, the other on first call."""
-    made = host()
-    return (made, _on_first_call(other)) if order == "le" else (_on_first_call(other), made)
+def _both_orders(make: Callable[[str], Any]) -> tuple[Any, Any]:
+    """(little-endian, big-endian) functions from ``make(order)``: the host's made now, the
+    other on its first call."""
+    made, later = make(_HOST), _on_first_call(lambda: make(_OTHER))
+    return (made, later) if _HOST == "le" else (later, made)
 
 
 class LazyTypestore(Typestore):
@@ -60,16 +61,11 @@ class LazyTypestore(Typestore):
         getsize_cdr, size_cdr = generate_getsize_cdr(entries, self)
         # its size is a plain number every definition must have: made now (it is cheap)
         getsize_ros1, size_ros1 = generate_getsize_ros1(entries, self)
-        other = "be" if _HOST == "le" else "le"
-        serialize_le, serialize_be = _byte_order(
-            _HOST,
-            lambda: generate_serialize_cdr(entries, self, _HOST),
-            lambda: generate_serialize_cdr(entries, self, other),
+        serialize_le, serialize_be = _both_orders(
+            lambda order: generate_serialize_cdr(entries, self, order)
         )
-        deserialize_le, deserialize_be = _byte_order(
-            _HOST,
-            lambda: generate_deserialize_cdr(entries, self, _HOST),
-            lambda: generate_deserialize_cdr(entries, self, other),
+        deserialize_le, deserialize_be = _both_orders(
+            lambda order: generate_deserialize_cdr(entries, self, order)
         )
         msgdef: Msgdef[object] = Msgdef(
             typename,
