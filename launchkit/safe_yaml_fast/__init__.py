@@ -21,16 +21,21 @@ from pathlib import Path
 
 from launchkit import safe_yaml
 from launchkit.safe_yaml import Node
+from launchkit.safe_yaml_fast.line_item import LineItem
 from launchkit.safe_yaml_fast.lines import LineReader
 from launchkit.safe_yaml_fast.scalars import GiveUp
+
+__all__ = ["THRESHOLD", "LineItem", "list_items"]
 
 #: Texts shorter than this (in characters) are composed by PyYAML alone.
 THRESHOLD = 256 * 1024
 
 
-def list_items(text: str, path: Path, key: str) -> Iterator[Node]:
+def list_items(text: str, path: Path, key: str) -> Iterator[Node | LineItem]:
     """What :func:`launchkit.safe_yaml.list_items` gives (the same nodes, errors and
-    :class:`~launchkit.safe_yaml.NotAList`), read line by line where the text allows."""
+    :class:`~launchkit.safe_yaml.NotAList`), read line by line where the text allows; an item
+    written on one line comes as a :class:`LineItem`, whose :meth:`~LineItem.node` is the
+    composer's node."""
     if len(text) < THRESHOLD:
         yield from safe_yaml.list_items(text, path, key)
         return

@@ -5,6 +5,7 @@ from __future__ import annotations
 from collections.abc import Iterator
 
 from launchkit.safe_yaml import Node
+from launchkit.safe_yaml_fast.line_item import LineItem
 from launchkit.safe_yaml_fast.scalars import (
     KEY,
     MAX_DEPTH,
@@ -12,6 +13,7 @@ from launchkit.safe_yaml_fast.scalars import (
     PLAIN,
     QUOTED,
     STR,
+    TEXT_FIRST,
     FlowReader,
     GiveUp,
     first_bad,
@@ -57,8 +59,9 @@ class LineReader(FlowReader):
             row += 1
         self.row, self.indent, self.body = row, -1, ""
 
-    def items(self, key: str) -> Iterator[Node]:
-        """The items of the list under ``key:``, the text's only key."""
+    def items(self, key: str) -> Iterator[Node | LineItem]:
+        """The items of the list under ``key:``, the text's only key (an item written whole on
+        one line as a :class:`LineItem`)."""
         self.advance()
         if (
             self.indent != 0
@@ -88,14 +91,15 @@ class LineReader(FlowReader):
         node = Node("seq", self.file, self.row + 1, indent + 1)
         items = []
         while self.indent == indent and self.is_entry():
-            item = self.one_line(indent) or self.entry(indent, depth + 1)
+            on_one_line = self.one_line(indent)
+            item = self.entry(indent, depth + 1) if on_one_line is None else on_one_line.node()
             node.size += item.size
             items.append(item)
         node.items = items
         node.closed = True
         return node
 
-    def one_line(self, indent: int) -> Node | None:
+    def one_line(self, indent: int) -> LineItem | None:
         """The item on the current line if it is the usual ``- tag: {key: value, ...}`` of
         plain scalars, the whole item; then the line of the next. None for anything else: the
         general path reads it (this one is :meth:`entry`, :meth:`map` and :meth:`flow`
@@ -122,20 +126,14 @@ class LineReader(FlowReader):
         if len(self.tags) < 1000:  # a large file has a few tags: each checked once
             self.tags.add(name)
         row = self.row
-        file = self.file
-        value = Node("map", file, row + 1, indent + brace + 3)
-        value.pairs = pairs = self.scalar_pairs(inner, row, indent + brace + 3)
-        value.size += 2 * len(pairs)
-        value.closed = True
-        item = Node("map", file, row + 1, indent + 3)
-        item.size += 1 + value.size
-        item.pairs = [(self.plain(name, row + 1, indent + 3), value)]
-        item.closed = True
+        tag_col = indent + 3
+        tag, value = (STR, name) if name[:1] in TEXT_FIRST else self.typed(name)
+        cells = self.scalar_cells(inner, row, indent + brace + 3)
         self.advance()
         if self.indent > indent:  # more keys of the item below it: the general path reads it
             self.row, self.indent, self.body = row, indent, body
             return None
-        return item
+        return LineItem(self.file, row + 1, (name, tag_col, tag, value), tag_col + brace, cells)
 
     def entry(self, indent: int, depth: int) -> Node:
         """One ``- ...`` item of a list at ``indent``; after it, the line of the next."""

@@ -40,7 +40,7 @@ _FLOW_PLAIN = re.compile(_FIRST + r"[\w./~$()+=@ ;\-]*")
 KEY = re.compile(_FIRST + r"[\w./~$()+=@ ,;\-]*")
 _FIRST_CHARS = frozenset("abcdefghijklmnopqrstuvwxyzABCDEFGHIJKLMNOPQRSTUVWXYZ0123456789_./~$(+")
 #: First characters of plain scalars that are text whatever follows (no resolver starts so).
-_TEXT_FIRST = frozenset(() if _RESOLVES_ANY else _FIRST_CHARS - _RESOLVED_BY_FIRST)
+TEXT_FIRST = frozenset(() if _RESOLVES_ANY else _FIRST_CHARS - _RESOLVED_BY_FIRST)
 _ASCII_OK = bytes([10, *range(0x20, 0x7F)])
 _DIGITS_DOT = frozenset("0123456789.")
 QUOTED = re.compile(r"'[^']*'|\"[^\"\\]*\"")
@@ -94,6 +94,27 @@ class GiveUp(Exception):
     """The text leaves the part of YAML this reader follows."""
 
 
+#: One ``key: value`` pair of plain scalars on a line: the key as written, its 1-based column,
+#: its tag and value; then the same of the value.
+Cell = tuple[str, int, str, Any, str, int, str, Any]
+
+
+def plain_scalar(file: str, line: int, col: int, text: str, tag: str, value: Any) -> Node:
+    """The node of a plain scalar written ``text`` and typed ``tag`` and ``value``."""
+    return Node("scalar", file, line, col, value, _PLAIN_STYLE, tag, text)
+
+
+def cell_pairs(cells: list[Cell], file: str, line: int) -> list[tuple[Node, Node]]:
+    """The key and value nodes of ``cells`` (of ``line`` of ``file``)."""
+    return [
+        (
+            Node("scalar", file, line, key_col, key_value, _PLAIN_STYLE, key_tag, key),
+            Node("scalar", file, line, col, value, _PLAIN_STYLE, tag, text),
+        )
+        for key, key_col, key_tag, key_value, text, col, tag, value in cells
+    ]
+
+
 class FlowReader:
     """Scalars and flow collections to nodes, for the lines of ``file``."""
 
@@ -130,40 +151,42 @@ class FlowReader:
 
     def scalar_pairs(self, inside: str, row: int, col: int) -> list[tuple[Node, Node]]:
         """The pairs of a flow mapping of plain scalars only (``inside`` its text between the
-        braces, from column ``col``): split, not scanned, and typed inline (:meth:`plain`
-        unrolled: most scalars of a large file are here)."""
-        pairs: list[tuple[Node, Node]] = []
+        braces, from column ``col``), as :meth:`scalar_cells` reads them."""
+        return cell_pairs(self.scalar_cells(inside, row, col), self.file, row + 1)
+
+    def scalar_cells(self, inside: str, row: int, col: int) -> list[Cell]:
+        """The pairs of a flow mapping of plain scalars only (``inside`` its text between the
+        braces, from column ``col``), one :data:`Cell` each: split, not scanned, typed inline
+        (:meth:`plain` unrolled: most scalars of a large file are here)."""
+        cells: list[Cell] = []
         if not inside.strip(" "):
-            return pairs
-        line, file, typed, append = row + 1, self.file, self.typed, pairs.append
-        types = self.types
-        if (
-            inside[0] != " "
-            and inside[-1] != " "
-            and "  " not in inside
-            and " ," not in inside
-            and " :" not in inside
-            and inside.count(",") == inside.count(", ")
-        ):  # written as most are, ``k: v, k: v``: no spaces to strip
-            at = col + 1
-            for piece in inside.split(", "):
-                key, colon, text = piece.partition(": ")
-                if not colon or ":" in key or ":" in text or len(key) > MAX_KEY_LENGTH:
-                    raise GiveUp
-                if key[:1] in _TEXT_FIRST:
-                    key_node = Node("scalar", file, line, at, key, _PLAIN_STYLE, STR, key)
-                else:
-                    tag, value = types.get(key) or typed(key)
-                    key_node = Node("scalar", file, line, at, value, _PLAIN_STYLE, tag, key)
-                where = at + len(key) + 2
-                if text[:1] in _TEXT_FIRST:
-                    node = Node("scalar", file, line, where, text, _PLAIN_STYLE, STR, text)
-                else:
-                    tag, value = typed(text)
-                    node = Node("scalar", file, line, where, value, _PLAIN_STYLE, tag, text)
-                append((key_node, node))
-                at += len(piece) + 2
-            return pairs
+            return cells
+        typed, append, types = self.typed, cells.append, self.types
+        at = col + 1
+        for piece in inside.split(", "):  # written as most are, ``k: v, k: v``
+            key, colon, text = piece.partition(": ")
+            if (
+                "," in piece
+                or key[:1] == " "
+                or key[-1:] == " "
+                or text[-1:] == " "
+                or (text[:1] == " ")
+            ):
+                return self._spaced_cells(inside, col)  # spaces to strip, or a comma
+            if not colon or ":" in key or ":" in text or len(key) > MAX_KEY_LENGTH:
+                raise GiveUp
+            key_tag, key_value = (
+                (STR, key) if key[:1] in TEXT_FIRST else types.get(key) or typed(key)
+            )
+            tag, value = (STR, text) if text[:1] in TEXT_FIRST else typed(text)
+            append((key, at, key_tag, key_value, text, at + len(key) + 2, tag, value))
+            at += len(piece) + 2
+        return cells
+
+    def _spaced_cells(self, inside: str, col: int) -> list[Cell]:
+        """:meth:`scalar_cells` of a mapping written with other spaces around its signs."""
+        cells: list[Cell] = []
+        typed = self.typed
         for piece in inside.split(","):
             name = piece.lstrip(" ")
             at = col + len(piece) - len(name) + 1
@@ -172,19 +195,12 @@ class FlowReader:
             text = rest.strip(" ")
             if not colon or ":" in key or ":" in text or len(name) > MAX_KEY_LENGTH:
                 raise GiveUp
-            if key[:1] in _TEXT_FIRST:
-                key_node = Node("scalar", file, line, at, key, _PLAIN_STYLE, STR, key)
-            else:
-                tag, value = typed(key)
-                key_node = Node("scalar", file, line, at, value, _PLAIN_STYLE, tag, key)
-            at += len(name) + 2 + len(rest) - len(rest.lstrip(" "))
-            if text[:1] in _TEXT_FIRST:
-                append((key_node, Node("scalar", file, line, at, text, _PLAIN_STYLE, STR, text)))
-            else:
-                tag, value = typed(text)
-                append((key_node, Node("scalar", file, line, at, value, _PLAIN_STYLE, tag, text)))
+            key_tag, key_value = (STR, key) if key[:1] in TEXT_FIRST else typed(key)
+            where = at + len(name) + 2 + len(rest) - len(rest.lstrip(" "))
+            tag, value = (STR, text) if text[:1] in TEXT_FIRST else typed(text)
+            cells.append((key, at, key_tag, key_value, text, where, tag, value))
             col += len(piece) + 1
-        return pairs
+        return cells
 
     def scalar_items(self, inside: str, row: int, col: int) -> list[Node]:
         """The items of a flow list of plain scalars only, as :meth:`scalar_pairs` reads them."""
@@ -250,7 +266,7 @@ class FlowReader:
 
     def plain(self, text: str, line: int, col: int) -> Node:
         """A plain scalar, typed as :class:`launchkit.safe_yaml._Composer` types it."""
-        if text[:1] in _TEXT_FIRST:
+        if text[:1] in TEXT_FIRST:
             return Node("scalar", self.file, line, col, text, _PLAIN_STYLE, STR, text)
         tag, value = self.typed(text)
         return Node("scalar", self.file, line, col, value, _PLAIN_STYLE, tag, text)

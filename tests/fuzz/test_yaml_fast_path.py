@@ -21,6 +21,7 @@ from launchkit import safe_yaml, safe_yaml_fast
 from launchkit.errors import LaunchFileError
 from launchkit.frontend.launch_loader import LaunchLoader
 from launchkit.safe_yaml import Node, NotAList
+from launchkit.safe_yaml_fast.line_item import LineItem
 from launchkit.safe_yaml_fast.lines import LineReader
 from launchkit.safe_yaml_fast.scalars import GiveUp
 from tests.fuzz import strategies as S
@@ -46,12 +47,13 @@ def fields(node: Node) -> tuple[Any, ...]:
     )  # fmt: skip
 
 
-def read(items: Iterator[Node]) -> tuple[list[tuple[Any, ...]], str | None]:
-    """The items given, then the error that ended them (None: none)."""
+def read(items: Iterator[Node | LineItem]) -> tuple[list[tuple[Any, ...]], str | None]:
+    """The items given (a line item by its node), then the error that ended them (None:
+    none)."""
     out = []
     try:
         for item in items:
-            out.append(fields(item))
+            out.append(fields(item.node() if isinstance(item, LineItem) else item))
     except LaunchFileError as error:
         return out, f"{error.location}: {error}"
     except NotAList:

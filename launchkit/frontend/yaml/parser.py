@@ -14,9 +14,10 @@ from launchkit.description.launch_description import LaunchDescription
 from launchkit.errors import LaunchFileError, Location
 from launchkit.frontend.action_parser import ActionParser
 from launchkit.frontend.yaml.entity import YamlEntity, action_entity
+from launchkit.frontend.yaml.line_entity import line_entity
 from launchkit.frontend.yaml.scalars import describe
 from launchkit.safe_yaml import NotAList, compose, read_text
-from launchkit.safe_yaml_fast import list_items
+from launchkit.safe_yaml_fast import LineItem, list_items
 
 #: How many items of a large ``launch:`` list are composed before their actions are built
 #: (memory stays bounded; composing and building by turns one item at a time measured
@@ -56,7 +57,11 @@ class YamlParser:
                 if bad_item is not None:
                     break
                 try:
-                    entity = action_entity("launch", item)
+                    entity = (
+                        line_entity("launch", item)
+                        if isinstance(item, LineItem)
+                        else action_entity("launch", item)
+                    )
                 except LaunchFileError as error:
                     bad_item = error
                     break
