@@ -26,7 +26,11 @@ def line_entity(parent: str, item: LineItem) -> Entity:
     ``children``), else what :func:`action_entity` makes of its node (or the error it raises)."""
     if not item.tag_is_text:
         return action_entity(parent, item.node())
-    texts: dict[str, str] = {}
+    cells = item.cells
+    texts = {key: text for key, _, key_tag, _, text, _, tag, _ in cells if tag == key_tag == STR}
+    if len(texts) == len(cells) and "children" not in texts:  # the usual: all text, each once
+        return LineEntity(item, texts, _NONE)
+    texts = {}
     others: list[str] = []
     for key, _, key_tag, _, text, _, tag, _ in item.cells:
         if key_tag != STR or key in texts or key in others or key == "children":
@@ -36,6 +40,9 @@ def line_entity(parent: str, item: LineItem) -> Entity:
         else:
             others.append(key)
     return LineEntity(item, texts, frozenset(others))
+
+
+_NONE: frozenset[str] = frozenset()
 
 
 class LineEntity(Entity):
