@@ -4,7 +4,7 @@ from __future__ import annotations
 
 from typing import TYPE_CHECKING
 
-from launchkit._record import Frozen
+from launchkit._record import Frozen, slot_setters
 from launchkit.description.substitutions.base import Value, describe, perform
 from launchkit.description.truth import CONDITION_EXPECTED, condition_value
 from launchkit.errors import Location, RuntimeLaunchError
@@ -22,9 +22,9 @@ class Condition(Frozen):
     location: Location | None
 
     def __init__(self, value: Value, negate: bool, location: Location | None = None) -> None:
-        object.__setattr__(self, "value", value)
-        object.__setattr__(self, "negate", negate)
-        object.__setattr__(self, "location", location)
+        _set_value(self, value)
+        _set_negate(self, negate)
+        _set_location(self, location)
 
     def evaluate(self, context: LaunchContext) -> bool:
         """Whether the guarded action runs; an error for anything but true/1/false/0."""
@@ -38,3 +38,6 @@ class Condition(Frozen):
                 expected=CONDITION_EXPECTED,
             )
         return not result if self.negate else result
+
+
+_set_value, _set_negate, _set_location = slot_setters(Condition)

@@ -115,7 +115,9 @@ class Call(Substitution):
 
 def perform(value: Value, context: LaunchContext) -> str:
     """Perform every part of ``value`` and concatenate the results."""
-    return "".join(part.perform(context) for part in value)
+    if len(value) == 1:  # most values: one text or one substitution (no generator to build)
+        return value[0].perform(context)
+    return "".join([part.perform(context) for part in value])
 
 
 def describe(value: Value) -> str:
