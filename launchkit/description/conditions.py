@@ -13,6 +13,10 @@ if TYPE_CHECKING:
     from launchkit.description.launch_context import LaunchContext
 
 
+#: The usual spellings, looked up before the full rule (a large file evaluates one per action).
+_SPELLED = {"true": True, "1": True, "false": False, "0": False}
+
+
 class Condition(Frozen):
     """``if="VALUE"`` (or ``unless`` when ``negate``), evaluated with the strict rule."""
 
@@ -29,7 +33,9 @@ class Condition(Frozen):
     def evaluate(self, context: LaunchContext) -> bool:
         """Whether the guarded action runs; an error for anything but true/1/false/0."""
         text = perform(self.value, context)
-        result = condition_value(text)
+        result = _SPELLED.get(text)
+        if result is None:
+            result = condition_value(text)
         if result is None:
             attr = "unless" if self.negate else "if"
             raise RuntimeLaunchError(

@@ -115,8 +115,9 @@ class Call(Substitution):
 
 def perform(value: Value, context: LaunchContext) -> str:
     """Perform every part of ``value`` and concatenate the results."""
-    if len(value) == 1:  # most values: one text or one substitution (no generator to build)
-        return value[0].perform(context)
+    if len(value) == 1:  # most values: one text or one substitution (a large file's path)
+        part = value[0]
+        return part.text if type(part) is Text else part.perform(context)
     return "".join([part.perform(context) for part in value])
 
 

@@ -6,6 +6,9 @@ from __future__ import annotations
 import bisect
 import functools
 import re
+from collections.abc import Iterator
+from itertools import accumulate, count
+from operator import add
 from pathlib import Path
 from typing import TYPE_CHECKING
 
@@ -22,18 +25,26 @@ if TYPE_CHECKING:
     #: An element as expat (a small plain file) or lxml (any other) read it.
     AnyElement = Element | etree._Element
 
-_NEWLINE = re.compile("\n")
 #: How many lines before an element's reported line its start tag may begin (lxml gives the
 #: line where the start tag ends; expat the line where it begins).
 LINES_BACK = 20
 #: What may follow ``<tag`` in a start tag (``<tagname`` is another tag); "" is the text's end.
 _TAG_ENDS = frozenset([" ", "\t", "\n", "\r", "/", ">", ""])
+#: ``="`` or ``='``: an attribute written as most are, without blanks around its ``=``.
+_EQUALS_QUOTE = frozenset(['="', "='"])
 
 
 @functools.lru_cache(maxsize=256)
 def _attribute_pattern(name: str) -> re.Pattern[str]:
     """Finds ``NAME = "`` (starting with the name: a literal the search jumps to)."""
     return re.compile(re.escape(name) + r"\s*=\s*([\"'])")
+
+
+def _line_starts(text: str, start: int) -> Iterator[int]:
+    """Where the lines after each newline of ``text`` start, ``text`` being at offset
+    ``start`` (C-level iteration: a large file has one line per element)."""
+    lengths = accumulate(map(len, text.split("\n")[:-1]))  # the text before each newline
+    return map(add, lengths, count(start + 1))  # and the newlines up to and with it
 
 
 class SourceFile:
@@ -49,13 +60,13 @@ class SourceFile:
         self.text = text  # the window: whole lines from ``first_line`` on
         self.first_line = 1
         #: Where each line of the window starts (offsets into ``text``).
-        self.line_starts = [0] + [m.end() for m in _NEWLINE.finditer(text)]
+        self.line_starts = [0, *_line_starts(text, 0)]
 
     def append(self, text: str) -> None:
         """Text read after the window's end."""
         start = len(self.text)
         self.text += text
-        self.line_starts.extend(start + m.end() for m in _NEWLINE.finditer(text))
+        self.line_starts.extend(_line_starts(text, start))
 
     def forget_before(self, line: int) -> None:
         """Drop the text before 1-based ``line`` (offsets into the window change)."""
@@ -93,19 +104,40 @@ class XmlEntity(Entity):
     """An element of an XML launch file."""
 
     def __init__(
-        self, element: AnyElement, source: SourceFile, sourceline: int | None = None
+        self,
+        element: AnyElement,
+        source: SourceFile,
+        sourceline: int | None = None,
+        tag: str | None = None,
     ) -> None:
         # Entity.__init__'s fields set here: a large file makes one of these per element
-        tag = element.tag
-        self.tag = tag if isinstance(tag, str) else str(tag)
+        if tag is None:  # (``tag``: the element's, when the caller has read it already)
+            tag = element.tag
+            if not isinstance(tag, str):
+                tag = str(tag)
+        self.tag = tag
         self._read: set[str] = set()
         self.element = element
         self.source = source
         self._attributes: dict[str, str] = dict(element.items())  # type: ignore[arg-type]
         if sourceline is None:
             sourceline = element.sourceline  # type: ignore[assignment]
-        self._start, self._line, self._col = self._find_start(sourceline or 1)
+        line: int = sourceline or 1
         self._location: Location | None = None
+        # the usual case inline (see _find_start): the start tag begins on the line given
+        starts = source.line_starts
+        index = line - source.first_line
+        if 0 <= index < len(starts) - 1:
+            start = starts[index]
+            text = source.text
+            found = text.rfind("<" + tag, start, starts[index + 1])
+            after = found + len(tag) + 1
+            if found >= 0 and text[after : after + 1] in _TAG_ENDS:
+                self._start = found
+                self._line = line
+                self._col = found - start + 1
+                return
+        self._start, self._line, self._col = self._find_start(line)
 
     def _find_start(self, line: int) -> tuple[int, int, int]:
         """The offset in the window, line and column where the start tag begins (``line``:
@@ -144,10 +176,19 @@ class XmlEntity(Entity):
 
     def attribute_location(self, name: str) -> Location:
         """Where attribute ``name``'s value begins (after the quote)."""
-        pattern = _attribute_pattern(name)
         text = self.source.text
         position = self._start
-        while True:  # the first NAME = " after a blank
+        # the first NAME = " after a blank; the usual NAME=" found without the pattern (the
+        # first NAME in the text is where the pattern's first match would be, if it matches)
+        found = text.find(name, position)
+        if found > 0 and text[found - 1].isspace():
+            end = found + len(name) + 2
+            if text[end - 2 : end] in _EQUALS_QUOTE:
+                if text.find("\n", position, end) < 0:  # on the start tag's first line
+                    return Location(self.source.file, self._line, self._col + end - position)
+                return self.source.location(end)
+        pattern = _attribute_pattern(name)
+        while True:
             match = pattern.search(text, position)
             if match is None:
                 return self.location

@@ -82,15 +82,28 @@ class ElementStream:
 
     def _read_events(self) -> None:
         element: etree._Element
+        parse, parsed, source = self.actions.parse_action, self.parsed, self.source
         for _, element in self.parser.read_events():  # type: ignore[assignment]
             parent = element.getparent()
             if parent is None:  # the root's end: the file's last element
                 if self.root is None:
                     self._start_root(element)
-            elif parent is self.root or parent.getparent() is None:
+                continue
+            if parent is not self.root:
+                if parent.getparent() is not None:  # inside a top-level element
+                    continue
                 if self.root is None:
                     self._start_root(parent)
-                self._top_level(parent, element)
+            # a top-level element (one per action: a large file's loop, kept inline)
+            tag = element.tag
+            if self.error is None and isinstance(tag, str):
+                sourceline: int | None = element.sourceline  # type: ignore[assignment]
+                try:
+                    parsed.append(parse(XmlEntity(element, source, sourceline, tag)))
+                except LaunchFileError as error:
+                    self.error = error  # raised at the end, unless the file is not well-formed
+                self.keep_from = sourceline or self.keep_from
+            parent.remove(element)  # its action holds no part of it: the tree stays small
 
     def _start_root(self, root: etree._Element) -> None:
         """The root, met at its first child's end (its attributes are all read by then)."""
@@ -102,17 +115,6 @@ class ElementStream:
             self.deprecated = read_root(XmlEntity(root, self.source))
         except LaunchFileError as error:
             self.error = error
-
-    def _top_level(self, root: etree._Element, element: etree._Element) -> None:
-        if self.error is None and isinstance(element.tag, str):
-            sourceline: int | None = element.sourceline  # type: ignore[assignment]
-            try:
-                entity = XmlEntity(element, self.source, sourceline)
-                self.parsed.append(self.actions.parse_action(entity))
-            except LaunchFileError as error:
-                self.error = error  # raised at the end, unless the file is not well-formed
-            self.keep_from = sourceline or self.keep_from
-        root.remove(element)  # its action holds no part of it: the tree stays small
 
 
 def _stream_encoding(head: bytes) -> str:
