@@ -16,12 +16,13 @@ import pytest
 from launchkit.api import check_report
 from launchkit.description.actions import SetConfiguration
 from launchkit.description.actions.base import Action
+from launchkit.description.substitutions.base import Text
 from launchkit.errors import LaunchFileError
 from launchkit.frontend.action_parser import ActionParser
 from launchkit.frontend.base_entity import Entity
 from launchkit.frontend.launch_loader import LaunchLoader
 from launchkit.frontend.tags import standard_parser
-from launchkit.frontend.xml.entity import XmlEntity
+from launchkit.frontend.xml.entity import SHARED_LENGTH, SHARED_VALUES, XmlEntity
 from launchkit.frontend.xml.parser import XmlParser
 from launchkit.frontend.xml.stream import CHUNK_SIZE
 from launchkit.safe_yaml import list_items
@@ -195,3 +196,35 @@ def test_a_python_launch_files_code_runs_with_the_cycle_collector(tmp_path: Path
     assert gc.isenabled()
     assert ": ok (1 file(s)" in check_report(path)
     assert gc.isenabled()
+
+
+def _sources(entity: Entity, parser: ActionParser) -> Action:
+    assert isinstance(entity, XmlEntity)
+    probe = Probe(len(entity.source.plain_values), 0)
+    probe.value = entity.value("v")  # type: ignore[attr-defined]
+    return probe
+
+
+def test_short_plain_values_are_one_object_per_file(tmp_path: Path) -> None:
+    # a large file writes the same short values again and again (if="false"): one object
+    # each, in a bounded table; longer values and substitutions get their own
+    lines = [f'<let name="v{i}" value="false"/>' for i in range(3)]
+    lines += [f'<let name="w" value="{"y" * (SHARED_LENGTH + 1)}"/>'] * 2
+    lines += ['<let name="w" value="$(var v0)"/>'] * 2
+    actions = LaunchLoader().load(_write(tmp_path / "a.launch.xml", lines)).actions
+    values = [action.value for action in actions if isinstance(action, SetConfiguration)]
+    assert values[0] is values[1] is values[2] and values[0] == (Text("false"),)
+    assert values[3] is not values[4] and values[3] == values[4]
+    assert values[5] is not values[6] and values[5] == values[6]
+    again = LaunchLoader().load(_write(tmp_path / "b.launch.xml", lines[:1])).actions[0]
+    assert isinstance(again, SetConfiguration) and again.value is not values[0]  # per file
+    actions_parser = standard_parser()
+    actions_parser.register("probe", _sources)
+    path = _write(
+        tmp_path / "c.launch.xml", [f'<probe v="n{i}"/>' for i in range(2 * SHARED_VALUES)]
+    )
+    probes = LaunchLoader(actions_parser).load(path).actions
+    assert max(p.siblings for p in probes if isinstance(p, Probe)) == SHARED_VALUES
+    assert [p.value for p in probes[-2:]] == [  # type: ignore[attr-defined]
+        (Text(f"n{i}"),) for i in range(2 * SHARED_VALUES - 2, 2 * SHARED_VALUES)
+    ]

@@ -30,6 +30,10 @@ if TYPE_CHECKING:
 LINES_BACK = 20
 #: What may follow ``<tag`` in a start tag (``<tagname`` is another tag); "" is the text's end.
 _TAG_ENDS = frozenset([" ", "\t", "\n", "\r", "/", ">", ""])
+#: The longest attribute text whose value elements share, and how many texts a file shares
+#: (the first ones met: ``true``, ``screen``, a package name recur; most names do not).
+SHARED_LENGTH = 24
+SHARED_VALUES = 1024
 #: ``="`` or ``='``: an attribute written as most are, without blanks around its ``=``.
 _EQUALS_QUOTE = frozenset(['="', "='"])
 
@@ -52,7 +56,7 @@ class SourceFile:
     all of it, or, when the file is read as a stream, a window of whole lines that grows as
     text is read and is cut from the front once the elements there are done."""
 
-    __slots__ = ("file", "first_line", "line_starts", "path", "text")
+    __slots__ = ("file", "first_line", "line_starts", "path", "plain_values", "text")
 
     def __init__(self, path: Path, text: str = "") -> None:
         self.path = path
@@ -61,6 +65,10 @@ class SourceFile:
         self.first_line = 1
         #: Where each line of the window starts (offsets into ``text``).
         self.line_starts = [0, *_line_starts(text, 0)]
+        #: The values of short attributes without substitutions, shared by the elements
+        #: that write the same text (``if="false"``, ``output="screen"``; values are never
+        #: changed once parsed): one object, and no new one made, per element of a large file.
+        self.plain_values: dict[str, Value] = {}
 
     def append(self, text: str) -> None:
         """Text read after the window's end."""
@@ -219,7 +227,14 @@ class XmlEntity(Entity):
         if text is None:
             return None
         if "$" not in text and "\\" not in text:  # plain text: no location to find
-            return (Text(text),) if text else ()
+            if len(text) > SHARED_LENGTH:
+                return (Text(text),)
+            shared = self.source.plain_values.get(text)
+            if shared is None:
+                shared = (Text(text),) if text else ()
+                if len(self.source.plain_values) < SHARED_VALUES:
+                    self.source.plain_values[text] = shared
+            return shared
         return parse_value(text, self.attribute_location(name))
 
     def assert_fully_read(self) -> None:
