@@ -5,7 +5,7 @@ from __future__ import annotations
 from typing import TYPE_CHECKING
 
 from launchkit._record import Frozen, slot_setters
-from launchkit.description.substitutions.base import Value, describe, perform
+from launchkit.description.substitutions.base import Text, Value, describe, perform
 from launchkit.description.truth import CONDITION_EXPECTED, condition_value
 from launchkit.errors import DeferredLocation, Location, RuntimeLaunchError
 
@@ -50,7 +50,11 @@ class Condition(Frozen):
 
     def evaluate(self, context: LaunchContext) -> bool:
         """Whether the guarded action runs; an error for anything but true/1/false/0."""
-        text = perform(self.value, context)
+        value = self.value
+        if len(value) == 1 and type(value[0]) is Text:  # the usual literal (a call shorter)
+            text = value[0].text
+        else:
+            text = perform(value, context)
         result = _SPELLED.get(text)
         if result is None:
             result = condition_value(text)

@@ -141,6 +141,22 @@ _PROCESS_ATTRIBUTES: tuple[tuple[str, str, str | tuple[str, ...] | None, bool], 
 _PROCESS_ORDER = {spec[0]: (index, *spec) for index, spec in enumerate(_PROCESS_ATTRIBUTES)}
 
 
+#: An entry of _PROCESS_ORDER.
+_Spec = tuple[int, str, str, str | tuple[str, ...] | None, bool]
+#: The process attributes among an element's attributes (by the names it has, in the order
+#: written), in the table's order: a large file's elements mostly have the same names.
+_GIVEN: dict[tuple[str, ...], list[_Spec]] = {}
+
+
+def _given(names: tuple[str, ...]) -> list[_Spec]:
+    given = _GIVEN.get(names)
+    if given is None:
+        given = sorted(spec for name in names if (spec := _PROCESS_ORDER.get(name)) is not None)
+        if len(_GIVEN) < 256:  # a bounded table: any other set of names is sorted each time
+            _GIVEN[names] = given
+    return given
+
+
 def parse_process_options(entity: Entity, children: list[Entity] | None = None) -> ProcessOptions:
     """The attributes and ``<env>`` children ``<executable>`` and ``<node>`` share
     (``children``: the entity's children, when the caller has them already)."""
@@ -151,14 +167,7 @@ def parse_process_options(entity: Entity, children: list[Entity] | None = None) 
             env.append((child.required("name"), child.required("value")))
             leaf(child).assert_fully_read()
     # most are absent: only the given ones are read (large files), in the table's order
-    given = []
-    for name in entity.attribute_names():
-        spec = _PROCESS_ORDER.get(name)
-        if spec is not None:
-            given.append(spec)
-    if len(given) > 1:
-        given.sort()
-    for _, attribute, name, how, typed in given:
+    for _, attribute, name, how, typed in _given(tuple(entity.attribute_names())):
         if how is None:
             value = entity.value(attribute)
         elif isinstance(how, tuple):
