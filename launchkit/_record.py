@@ -14,6 +14,7 @@ A record class does not derive from another record class (its fields are its own
 
 from __future__ import annotations
 
+from collections.abc import Callable
 from typing import Any, ClassVar
 
 
@@ -67,6 +68,13 @@ class Frozen(Record):
     def __reduce__(self) -> tuple[Any, ...]:
         # copy, deepcopy and pickle: the default sets the slots with setattr, refused here
         return _rebuild, (type(self), self.fields())
+
+
+def slot_setters(cls: type[Frozen]) -> tuple[Callable[[Any, Any], None], ...]:
+    """The setters of ``cls``'s slots, one per field in declaration order: a frozen record made
+    once per element of a large file sets its fields with these in ``__init__`` (half what
+    ``object.__setattr__`` by name costs)."""
+    return tuple(cls.__dict__[name].__set__ for name in cls.field_names)
 
 
 def _rebuild(cls: type[Frozen], values: tuple[Any, ...]) -> Frozen:

@@ -13,7 +13,7 @@ from launchkit.checks import CheckedTree, check_tree, static_path, undeclared_ar
 from launchkit.description.actions import DeclareArgument, Include
 from launchkit.description.actions.base import Action
 from launchkit.description.launch_context import LaunchContext, Runner
-from launchkit.description.launch_description import LaunchDescription, walk_lazily
+from launchkit.description.launch_description import LaunchDescription
 from launchkit.description.ros_link import RosLink
 from launchkit.errors import LaunchkitError, PackageNotFoundError
 from launchkit.frontend.launch_loader import LaunchLoader, collector_paused
@@ -128,6 +128,7 @@ def dry_run(
         context = _context(recorder, arguments, packages, loader, None)
         recorder.context = context
         context.uninterrupted = held
+        context.delivers_events = False  # nothing drains them: handlers' actions are recorded
         try:
             with raising(), context.in_file(tree.top.path):
                 for action in tree.top.actions:
@@ -159,11 +160,7 @@ def check_report(path: Path, arguments: Mapping[str, str] | None = None) -> str:
         + (f" and {timers} timer(s)" if timers else "")
         + ")"
     )
-    if any(
-        action.condition is not None
-        for d in tree.files.values()
-        for action in walk_lazily(d.actions)
-    ):
+    if tree.has_conditions():
         report += (
             "\nnot checked: what an if/unless that is false with these arguments would "
             "include or start (pass other arguments to check it)"

@@ -17,7 +17,9 @@ outermost first: ``a.launch.xml:12:3 -> b.launch.py:40: error: ...``.
 
 from __future__ import annotations
 
-from launchkit._record import Frozen
+from typing import Any
+
+from launchkit._record import Frozen, slot_setters
 
 _NAMED_CONTROLS = {"\n": "\\n", "\r": "\\r", "\0": "\\0"}
 #: Control characters (C0 but tab, DEL, C1) as escapes: a name or a file must not be able to
@@ -43,9 +45,9 @@ class Location(Frozen):
     col: int
 
     def __init__(self, file: str, line: int = 0, col: int = 0) -> None:
-        object.__setattr__(self, "file", file)
-        object.__setattr__(self, "line", line)
-        object.__setattr__(self, "col", col)
+        _set_file(self, file)
+        _set_line(self, line)
+        _set_col(self, col)
 
     def __str__(self) -> str:
         if self.line and self.col:
@@ -59,6 +61,13 @@ class Location(Frozen):
         if not self.line or not self.col:
             return self
         return Location(self.file, self.line, self.col + offset)
+
+
+_set_file, _set_line, _set_col = slot_setters(Location)
+
+#: A location found only when first asked for: a function and the arguments it finds it
+#: with, as a tuple (nothing to build but the tuple: a large file has many never asked for).
+DeferredLocation = tuple[Any, ...]
 
 
 class LaunchkitError(Exception):

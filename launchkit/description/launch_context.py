@@ -201,6 +201,10 @@ class LaunchContext:
         #: Registered event handlers, newest first (as ROS keeps them).
         self.handlers: deque[Handler] = deque()
         self.event_queue: deque[object] = deque()
+        #: Whether anything drains the queue: False for ``--print`` and ``check``, whose
+        #: events would never reach a handler, so none is built or queued (a large file
+        #: would queue one per action).
+        self.delivers_events = True
         self.draining = False
         self.is_shutdown = False
         self.locals: dict[str, Any] = {}
@@ -281,8 +285,10 @@ class LaunchContext:
         return self._ros
 
     def emit(self, event: object) -> None:
-        """Queue ``event`` for the handlers (the runner drains the queue)."""
-        self.event_queue.append(event)
+        """Queue ``event`` for the handlers (the runner drains the queue); dropped when
+        nothing drains it."""
+        if self.delivers_events:
+            self.event_queue.append(event)
 
     def register_handler(self, handler: Handler) -> None:
         """Add an event handler, ahead of the ones registered before it; it will run its

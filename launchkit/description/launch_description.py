@@ -33,37 +33,40 @@ class LaunchDescription(Record):
     def required_arguments(self) -> list[DeclareArgument]:
         """``<arg>``s without a default that are reached unconditionally at the top level."""
         found: list[DeclareArgument] = []
-        pending = self.actions[::-1]  # a stack, next action last (pop(0) is quadratic)
-        while pending:
-            action = pending.pop()
-            if action.condition is not None:
-                continue
-            if isinstance(action, DeclareArgument) and action.default is None:
-                found.append(action)
-            elif isinstance(action, Group) and action.forwarding:
-                pending.extend(reversed(action.actions))
-        return found
+        outer: list[Iterator[Action]] = []  # the groups being scanned (no recursion)
+        actions = iter(self.actions)
+        while True:
+            for action in actions:
+                if action.condition is not None:
+                    continue
+                if isinstance(action, DeclareArgument):
+                    if action.default is None:
+                        found.append(action)
+                elif isinstance(action, Group) and action.forwarding:
+                    outer.append(actions)
+                    actions = iter(action.actions)
+                    break
+            else:
+                if not outer:
+                    return found
+                actions = outer.pop()
 
 
 def walk(actions: list[Action]) -> list[Action]:
     """Every action in ``actions`` and their children, depth first, in document order."""
     out: list[Action] = []
-    pending = actions[::-1]  # a stack, next action last: no recursion, linear
-    while pending:
-        action = pending.pop()
-        out.append(action)
-        children = action.children()
-        if children:
-            pending.extend(reversed(children))
-    return out
-
-
-def walk_lazily(actions: list[Action]) -> Iterator[Action]:
-    """:func:`walk` one action at a time (for a search that may stop at the first)."""
-    pending = actions[::-1]
-    while pending:
-        action = pending.pop()
-        yield action
-        children = action.children()
-        if children:
-            pending.extend(reversed(children))
+    append = out.append
+    outer: list[Iterator[Action]] = []  # the lists being walked around this one (no recursion)
+    level: Iterator[Action] = iter(actions)
+    while True:
+        for action in level:
+            append(action)
+            children = action.children()
+            if children:
+                outer.append(level)
+                level = iter(children)
+                break
+        else:
+            if not outer:
+                return out
+            level = outer.pop()

@@ -9,6 +9,7 @@ check the structure that bounds them, without timing.
 from __future__ import annotations
 
 import gc
+import pickle
 from pathlib import Path
 
 import pytest
@@ -16,12 +17,14 @@ import pytest
 from launchkit.api import check_report
 from launchkit.description.actions import SetConfiguration
 from launchkit.description.actions.base import Action
-from launchkit.errors import LaunchFileError
+from launchkit.description.conditions import Condition
+from launchkit.description.substitutions.base import Text
+from launchkit.errors import LaunchFileError, RuntimeLaunchError
 from launchkit.frontend.action_parser import ActionParser
 from launchkit.frontend.base_entity import Entity
 from launchkit.frontend.launch_loader import LaunchLoader
 from launchkit.frontend.tags import standard_parser
-from launchkit.frontend.xml.entity import XmlEntity
+from launchkit.frontend.xml.entity import SHARED_LENGTH, SHARED_VALUES, XmlEntity
 from launchkit.frontend.xml.parser import XmlParser
 from launchkit.frontend.xml.stream import CHUNK_SIZE
 from launchkit.safe_yaml import list_items
@@ -195,3 +198,78 @@ def test_a_python_launch_files_code_runs_with_the_cycle_collector(tmp_path: Path
     assert gc.isenabled()
     assert ": ok (1 file(s)" in check_report(path)
     assert gc.isenabled()
+
+
+def _sources(entity: Entity, parser: ActionParser) -> Action:
+    assert isinstance(entity, XmlEntity)
+    probe = Probe(len(entity.source.plain_values), 0)
+    probe.value = entity.value("v")  # type: ignore[attr-defined]
+    return probe
+
+
+def test_short_plain_values_are_one_object_per_file(tmp_path: Path) -> None:
+    # a large file writes the same short values again and again (if="false"): one object
+    # each, in a bounded table; longer values and substitutions get their own
+    lines = [f'<let name="v{i}" value="false"/>' for i in range(3)]
+    lines += [f'<let name="w" value="{"y" * (SHARED_LENGTH + 1)}"/>'] * 2
+    lines += ['<let name="w" value="$(var v0)"/>'] * 2
+    actions = LaunchLoader().load(_write(tmp_path / "a.launch.xml", lines)).actions
+    values = [action.value for action in actions if isinstance(action, SetConfiguration)]
+    assert values[0] is values[1] is values[2] and values[0] == (Text("false"),)
+    assert values[3] is not values[4] and values[3] == values[4]
+    assert values[5] is not values[6] and values[5] == values[6]
+    again = LaunchLoader().load(_write(tmp_path / "b.launch.xml", lines[:1])).actions[0]
+    assert isinstance(again, SetConfiguration) and again.value is not values[0]  # per file
+    actions_parser = standard_parser()
+    actions_parser.register("probe", _sources)
+    path = _write(
+        tmp_path / "c.launch.xml", [f'<probe v="n{i}"/>' for i in range(2 * SHARED_VALUES)]
+    )
+    probes = LaunchLoader(actions_parser).load(path).actions
+    assert max(p.siblings for p in probes if isinstance(p, Probe)) == SHARED_VALUES
+    assert [p.value for p in probes[-2:]] == [  # type: ignore[attr-defined]
+        (Text(f"n{i}"),) for i in range(2 * SHARED_VALUES - 2, 2 * SHARED_VALUES)
+    ]
+
+
+def test_deferred_condition_locations_are_the_whole_trees(tmp_path: Path) -> None:
+    # a streamed file's conditions find their location only when asked, long after the text
+    # window they were read in is gone: the same locations as the whole tree's, found at once
+    lines = [f'<let name="v{i}" value="x" if="true"/>' for i in range(ENTRIES)]
+    lines[0] = "<let name='a' value='x' unless = 'false'/>"
+    lines[ENTRIES // 2] = '<let name="b"\n     value="x" if=\n"$(var c)"/>'
+    lines[-1] = '<let value="name if=" name="d"\tif="1"/>'  # "if=" in another value first
+    path = _write(tmp_path / "big.launch.xml", lines).resolve()
+    streamed = LaunchLoader().load(path).actions
+    whole = XmlParser(standard_parser()).parse_whole(path.read_bytes(), path).actions
+    assert isinstance(streamed[0].condition, Condition)
+    assert isinstance(streamed[0].condition.where, tuple)  # deferred
+    assert isinstance(whole[0].condition, Condition) and whole[0].condition.where is not None
+    assert not isinstance(whole[0].condition.where, tuple)  # a whole tree's: found at once
+    deferred = [a.condition.location for a in streamed if a.condition]
+    assert deferred == [a.condition.location for a in whole if a.condition]
+    assert [str(loc) for loc in deferred[:1] + deferred[ENTRIES // 2 : ENTRIES // 2 + 1]] == [
+        f"{path}:2:37",
+        f"{path}:{ENTRIES // 2 + 4}:2",
+    ]
+    assert streamed[1].condition == whole[1].condition  # compared with its location
+    assert pickle.loads(pickle.dumps(streamed[2].condition)) == whole[2].condition
+
+
+def test_a_bad_condition_far_in_a_large_file_names_its_place(tmp_path: Path) -> None:
+    lines = [f'<let name="v{i}" value="x" if="true"/>' for i in range(ENTRIES)]
+    lines[-3] = '<let name="w" value="x"\n     if="$(var maybe)"/>'
+    path = _write(tmp_path / "big.launch.xml", lines).resolve()
+    with pytest.raises(RuntimeLaunchError) as raised:
+        check_report(path, {"maybe": "perhaps"})
+    assert str(raised.value.location) == f"{path}:{ENTRIES}:10"
+    assert "invalid if condition 'perhaps'" in str(raised.value)
+
+
+def test_a_deferred_location_once_the_file_is_gone_is_its_tags(tmp_path: Path) -> None:
+    lines = [f'<let name="v{i}" value="x" if="true"/>' for i in range(ENTRIES)]
+    path = _write(tmp_path / "big.launch.xml", lines).resolve()
+    actions = LaunchLoader().load(path).actions
+    path.unlink()
+    condition = actions[5].condition
+    assert condition is not None and condition.location == actions[5].location

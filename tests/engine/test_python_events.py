@@ -6,6 +6,7 @@ from __future__ import annotations
 import sys
 from collections.abc import Callable, Iterator
 from pathlib import Path
+from typing import Any
 
 import pytest
 
@@ -202,3 +203,56 @@ def generate_launch_description():
         f"events.launch.py:{line}: error: OpaqueFunction fail_later() raised RuntimeError: "
         "no map for bonjour" in error
     )
+
+
+COMPLETION = """
+from launch import LaunchDescription
+from launch.actions import LogInfo, RegisterEventHandler, SetLaunchConfiguration
+from launch.event_handlers import OnExecutionComplete
+
+
+def generate_launch_description():
+    hello = LogInfo(msg='hello')
+    setting = SetLaunchConfiguration('word', 'bonjour')
+    return LaunchDescription([
+        hello,
+        setting,
+        RegisterEventHandler(OnExecutionComplete(target_action=hello, on_completion=[
+            LogInfo(msg='hello is complete')])),
+        RegisterEventHandler(OnExecutionComplete(target_action=setting, on_completion=[
+            LogInfo(msg='the setting is complete')])),
+    ])
+"""
+
+
+def test_completion_reaches_a_handler_registered_after_the_action(
+    launch_py: Callable[..., Launcher],
+) -> None:
+    # the events are queued while the file is visited and delivered afterwards, so a handler
+    # registered later still hears them (a check or --print builds no event at all)
+    launcher = launch_py(COMPLETION)
+    assert launcher.finish() == 0
+    lines = launcher.lines
+    assert index_of(lines, "[INFO] [launch.user]: hello") < index_of(lines, "hello is complete")
+    index_of(lines, "[INFO] [launch.user]: the setting is complete")
+
+
+def test_a_dry_run_queues_no_event(tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> None:
+    # nothing drains a dry run's queue: an event per action would only hold memory
+    from launchkit import api
+    from launchkit.description.launch_context import LaunchContext
+
+    contexts: list[LaunchContext] = []
+    make_context = api._context
+
+    def keep(*args: Any) -> LaunchContext:
+        contexts.append(make_context(*args))
+        return contexts[-1]
+
+    monkeypatch.setattr(api, "_context", keep)
+    path = tmp_path / "completion.launch.py"
+    path.write_text(COMPLETION)
+    text = api.describe(path)
+    assert "event handler OnExecutionComplete(target_action=LogInfo):" in text
+    assert "hello is complete" in text and "the setting is complete" in text
+    assert len(contexts) == 1 and not contexts[0].event_queue

@@ -10,6 +10,7 @@ malformed ones.
 
 from __future__ import annotations
 
+import re
 from pathlib import Path
 
 import pytest
@@ -122,3 +123,41 @@ def test_expat_locates_a_tag_where_it_begins() -> None:
     assert expat is not None
     assert [child[1] for child in expat[3]] == ["f.launch.xml:2:1", "f.launch.xml:3:12"]
     assert [child[1] for child in lxml[3]] == ["f.launch.xml:3:12", "f.launch.xml:3:12"]
+
+
+def _located_by_the_pattern(entity: XmlEntity, name: str) -> str:
+    """Where ``name``'s value begins as the pattern alone finds it (the first NAME = " after
+    a blank; XmlEntity finds the usual NAME=" without it)."""
+    pattern = re.compile(re.escape(name) + r"\s*=\s*([\"'])")
+    text, position = entity.source.text, entity._start
+    while True:
+        match = pattern.search(text, position)
+        if match is None:
+            return str(entity.location)
+        if text[match.start() - 1].isspace():
+            return str(entity.source.location(match.end()))
+        position = match.start() + 1
+
+
+TAGS = [
+    '<let name="a" value="b"/>',
+    "<let name='a'\tvalue='b'/>",
+    '<let name = "a" value\n = \n"b"/>',
+    '<let xname="a" name="b" value="c"/>',
+    '<let value="name=\'x\'" name="a"/>',  # the pattern's first match is in another value
+    '<let value="x name=\'y\'" name="a"/>',
+    '<let value="b"\n     name="a"/>',
+    '<let value="xname="/>',
+]
+
+
+@pytest.mark.parametrize("tag", TAGS)
+def test_attribute_locations_are_the_patterns(tag: str) -> None:
+    text = f"<launch>\n  {tag}\n</launch>\n"
+    path = Path("f.launch.xml")
+    root, encoding = _read_with_lxml(text.encode(), path)
+    entity = XmlEntity(root, SourceFile(path, _decoded(text.encode(), encoding)))
+    (child,) = entity.children()
+    assert isinstance(child, XmlEntity)
+    for name in ("name", "value", "missing"):
+        assert str(child.attribute_location(name)) == _located_by_the_pattern(child, name)

@@ -33,7 +33,7 @@ class Action:
             if self.condition is not None and not self.condition.evaluate(context):
                 return
             self.execute(context)
-            if not self.COMPLETES_LATER:
+            if not self.COMPLETES_LATER and context.delivers_events:
                 context.emit(ExecutionComplete(action=self))
         except LaunchkitError as error:
             if self.location is not None:

@@ -115,7 +115,10 @@ class Call(Substitution):
 
 def perform(value: Value, context: LaunchContext) -> str:
     """Perform every part of ``value`` and concatenate the results."""
-    return "".join(part.perform(context) for part in value)
+    if len(value) == 1:  # most values: one text or one substitution (a large file's path)
+        part = value[0]
+        return part.text if type(part) is Text else part.perform(context)
+    return "".join([part.perform(context) for part in value])
 
 
 def describe(value: Value) -> str:

@@ -141,23 +141,33 @@ _PROCESS_ATTRIBUTES: tuple[tuple[str, str, str | tuple[str, ...] | None, bool], 
 _PROCESS_ORDER = {spec[0]: (index, *spec) for index, spec in enumerate(_PROCESS_ATTRIBUTES)}
 
 
-def parse_process_options(entity: Entity) -> ProcessOptions:
-    """The attributes and ``<env>`` children ``<executable>`` and ``<node>`` share."""
-    env = []
-    for child in entity.children():
+#: An entry of _PROCESS_ORDER.
+_Spec = tuple[int, str, str, str | tuple[str, ...] | None, bool]
+#: The process attributes among an element's attributes (by the names it has, in the order
+#: written), in the table's order: a large file's elements mostly have the same names.
+_GIVEN: dict[tuple[str, ...], list[_Spec]] = {}
+
+
+def _given(names: tuple[str, ...]) -> list[_Spec]:
+    given = _GIVEN.get(names)
+    if given is None:
+        given = sorted(spec for name in names if (spec := _PROCESS_ORDER.get(name)) is not None)
+        if len(_GIVEN) < 256:  # a bounded table: any other set of names is sorted each time
+            _GIVEN[names] = given
+    return given
+
+
+def parse_process_options(entity: Entity, children: list[Entity] | None = None) -> ProcessOptions:
+    """The attributes and ``<env>`` children ``<executable>`` and ``<node>`` share
+    (``children``: the entity's children, when the caller has them already)."""
+    options = ProcessOptions()  # no keyword: a call with one costs half as much again
+    env = options.env
+    for child in entity.children() if children is None else children:
         if child.tag == "env":
             env.append((child.required("name"), child.required("value")))
             leaf(child).assert_fully_read()
-    options = ProcessOptions(env=env)
     # most are absent: only the given ones are read (large files), in the table's order
-    given = []
-    for attribute in entity.attribute_names():
-        spec = _PROCESS_ORDER.get(attribute)
-        if spec is not None:
-            given.append(spec)
-    if len(given) > 1:
-        given.sort()
-    for _, attribute, name, how, typed in given:
+    for _, attribute, name, how, typed in _given(tuple(entity.attribute_names())):
         if how is None:
             value = entity.value(attribute)
         elif isinstance(how, tuple):
@@ -170,9 +180,9 @@ def parse_process_options(entity: Entity) -> ProcessOptions:
 
 def parse_executable(entity: Entity, parser: ActionParser) -> Action:
     """``<executable cmd ...>`` with ``<env>`` children."""
-    only_children(entity, ("env",))
+    children = only_children(entity, ("env",))
     cmd = entity.required("cmd", 'cmd="program args..."')
-    return ExecuteProcess(cmd, parse_process_options(entity))
+    return ExecuteProcess(cmd, parse_process_options(entity, children))
 
 
 def parse_timer(entity: Entity, parser: ActionParser) -> Action:

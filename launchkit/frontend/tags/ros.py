@@ -95,7 +95,7 @@ def parse_node(entity: Entity, parser: ActionParser, skip: tuple[str, ...] = ())
             remaps.append(Remap(child.required("from"), child.required("to")))
             leaf(child).assert_fully_read()
     node_name = entity.value("name")
-    options = parse_process_options(entity)
+    options = parse_process_options(entity, children)
     options.name = None  # `name` is the ROS node name here, not the process label
     kind = ComposableNodeContainer if skip else ExecuteNode
     return kind(

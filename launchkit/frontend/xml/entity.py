@@ -6,12 +6,15 @@ from __future__ import annotations
 import bisect
 import functools
 import re
+from collections.abc import Callable, Iterator
+from itertools import accumulate, count
+from operator import add
 from pathlib import Path
 from typing import TYPE_CHECKING
 
 from launchkit.description.substitutions.base import Text, Value
 from launchkit.description.substitutions.grammar import parse_value
-from launchkit.errors import Location
+from launchkit.errors import DeferredLocation, Location
 from launchkit.frontend.base_entity import Entity
 
 if TYPE_CHECKING:
@@ -22,12 +25,17 @@ if TYPE_CHECKING:
     #: An element as expat (a small plain file) or lxml (any other) read it.
     AnyElement = Element | etree._Element
 
-_NEWLINE = re.compile("\n")
 #: How many lines before an element's reported line its start tag may begin (lxml gives the
 #: line where the start tag ends; expat the line where it begins).
 LINES_BACK = 20
 #: What may follow ``<tag`` in a start tag (``<tagname`` is another tag); "" is the text's end.
 _TAG_ENDS = frozenset([" ", "\t", "\n", "\r", "/", ">", ""])
+#: The longest attribute text whose value elements share, and how many texts a file shares
+#: (the first ones met: ``true``, ``screen``, a package name recur; most names do not).
+SHARED_LENGTH = 24
+SHARED_VALUES = 1024
+#: ``="`` or ``='``: an attribute written as most are, without blanks around its ``=``.
+_EQUALS_QUOTE = frozenset(['="', "='"])
 
 
 @functools.lru_cache(maxsize=256)
@@ -36,12 +44,30 @@ def _attribute_pattern(name: str) -> re.Pattern[str]:
     return re.compile(re.escape(name) + r"\s*=\s*([\"'])")
 
 
+def _line_starts(text: str, start: int) -> Iterator[int]:
+    """Where the lines after each newline of ``text`` start, ``text`` being at offset
+    ``start`` (C-level iteration: a large file has one line per element)."""
+    lengths = accumulate(map(len, text.split("\n")[:-1]))  # the text before each newline
+    return map(add, lengths, count(start + 1))  # and the newlines up to and with it
+
+
 class SourceFile:
     """A launch file's path and the part of its text still needed for columns in messages:
     all of it, or, when the file is read as a stream, a window of whole lines that grows as
     text is read and is cut from the front once the elements there are done."""
 
-    __slots__ = ("file", "first_line", "line_starts", "path", "text")
+    __slots__ = (
+        "_whole",
+        "base",
+        "file",
+        "first_line",
+        "line_starts",
+        "path",
+        "plain_values",
+        "reread",
+        "text",
+        "windows",
+    )
 
     def __init__(self, path: Path, text: str = "") -> None:
         self.path = path
@@ -49,13 +75,34 @@ class SourceFile:
         self.text = text  # the window: whole lines from ``first_line`` on
         self.first_line = 1
         #: Where each line of the window starts (offsets into ``text``).
-        self.line_starts = [0] + [m.end() for m in _NEWLINE.finditer(text)]
+        self.line_starts = [0, *_line_starts(text, 0)]
+        #: The values of short attributes without substitutions, shared by the elements
+        #: that write the same text (``if="false"``, ``output="screen"``; values are never
+        #: changed once parsed): one object, and no new one made, per element of a large file.
+        self.plain_values: dict[str, Value] = {}
+        self.base = 0  # where the window starts in the whole text
+        #: The whole text read again (set by a stream): attribute locations that are seldom
+        #: asked for (conditions') are then found only when asked, in the window they were
+        #: read in (``windows``: each one's start, end and first line), cut again from it.
+        self.reread: Callable[[], str] | None = None
+        self.windows: list[tuple[int, int, int]] = []
+        self._whole: str | None = None
 
     def append(self, text: str) -> None:
         """Text read after the window's end."""
         start = len(self.text)
         self.text += text
-        self.line_starts.extend(start + m.end() for m in _NEWLINE.finditer(text))
+        self.line_starts.extend(_line_starts(text, start))
+        self.windows.append((self.base, self.base + len(self.text), self.first_line))
+
+    def whole_text(self) -> str | None:
+        """The whole text read again (once), or None when it cannot be."""
+        if self._whole is None and self.reread is not None:
+            try:
+                self._whole = self.reread()
+            except OSError:
+                self.reread = None
+        return self._whole
 
     def forget_before(self, line: int) -> None:
         """Drop the text before 1-based ``line`` (offsets into the window change)."""
@@ -64,6 +111,7 @@ class SourceFile:
             return
         cut = self.line_starts[index]
         self.text = self.text[cut:]
+        self.base += cut
         self.line_starts = [start - cut for start in self.line_starts[index:]]
         self.first_line += index
 
@@ -93,19 +141,40 @@ class XmlEntity(Entity):
     """An element of an XML launch file."""
 
     def __init__(
-        self, element: AnyElement, source: SourceFile, sourceline: int | None = None
+        self,
+        element: AnyElement,
+        source: SourceFile,
+        sourceline: int | None = None,
+        tag: str | None = None,
     ) -> None:
         # Entity.__init__'s fields set here: a large file makes one of these per element
-        tag = element.tag
-        self.tag = tag if isinstance(tag, str) else str(tag)
+        if tag is None:  # (``tag``: the element's, when the caller has read it already)
+            tag = element.tag
+            if not isinstance(tag, str):
+                tag = str(tag)
+        self.tag = tag
         self._read: set[str] = set()
         self.element = element
         self.source = source
         self._attributes: dict[str, str] = dict(element.items())  # type: ignore[arg-type]
         if sourceline is None:
             sourceline = element.sourceline  # type: ignore[assignment]
-        self._start, self._line, self._col = self._find_start(sourceline or 1)
+        line: int = sourceline or 1
         self._location: Location | None = None
+        # the usual case inline (see _find_start): the start tag begins on the line given
+        starts = source.line_starts
+        index = line - source.first_line
+        if 0 <= index < len(starts) - 1:
+            start = starts[index]
+            text = source.text
+            found = text.rfind("<" + tag, start, starts[index + 1])
+            after = found + len(tag) + 1
+            if found >= 0 and text[after : after + 1] in _TAG_ENDS:
+                self._start = found
+                self._line = line
+                self._col = found - start + 1
+                return
+        self._start, self._line, self._col = self._find_start(line)
 
     def _find_start(self, line: int) -> tuple[int, int, int]:
         """The offset in the window, line and column where the start tag begins (``line``:
@@ -144,19 +213,15 @@ class XmlEntity(Entity):
 
     def attribute_location(self, name: str) -> Location:
         """Where attribute ``name``'s value begins (after the quote)."""
-        pattern = _attribute_pattern(name)
-        text = self.source.text
-        position = self._start
-        while True:  # the first NAME = " after a blank
-            match = pattern.search(text, position)
-            if match is None:
-                return self.location
-            if text[match.start() - 1].isspace():
-                end = match.end()
-                if text.find("\n", self._start, end) < 0:  # on the start tag's first line
-                    return Location(self.source.file, self._line, self._col + end - self._start)
-                return self.source.location(end)
-            position = match.start() + 1
+        found = _attribute_location(self.source, self._start, self._line, self._col, name)
+        return self.location if found is None else found
+
+    def deferred_attribute_location(self, name: str) -> Location | DeferredLocation:
+        """As :meth:`Entity.deferred_attribute_location`: deferred in a streamed file."""
+        source = self.source
+        if source.reread is None:
+            return self.attribute_location(name)
+        return (_deferred_location, source, len(source.windows) - 1, self.location, name)
 
     def attribute_names(self) -> list[str]:
         """The element's attribute names."""
@@ -178,7 +243,14 @@ class XmlEntity(Entity):
         if text is None:
             return None
         if "$" not in text and "\\" not in text:  # plain text: no location to find
-            return (Text(text),) if text else ()
+            if len(text) > SHARED_LENGTH:
+                return (Text(text),)
+            shared = self.source.plain_values.get(text)
+            if shared is None:
+                shared = (Text(text),) if text else ()
+                if len(self.source.plain_values) < SHARED_VALUES:
+                    self.source.plain_values[text] = shared
+            return shared
         return parse_value(text, self.attribute_location(name))
 
     def assert_fully_read(self) -> None:
@@ -193,6 +265,51 @@ class XmlEntity(Entity):
         return [
             XmlEntity(child, self.source) for child in self.element if isinstance(child.tag, str)
         ]
+
+
+def _attribute_location(
+    source: SourceFile, start: int, line: int, col: int, name: str
+) -> Location | None:
+    """Where attribute ``name``'s value begins in the start tag at offset ``start`` of the
+    window (at ``line``:``col``); None when it is not found."""
+    text = source.text
+    position = start
+    # the first NAME = " after a blank; the usual NAME=" found without the pattern (the
+    # first NAME in the text is where the pattern's first match would be, if it matches)
+    found = text.find(name, position)
+    if found > 0 and text[found - 1].isspace():
+        end = found + len(name) + 2
+        if text[end - 2 : end] in _EQUALS_QUOTE:
+            if text.find("\n", position, end) < 0:  # on the start tag's first line
+                return Location(source.file, line, col + end - position)
+            return source.location(end)
+    pattern = _attribute_pattern(name)
+    while True:
+        match = pattern.search(text, position)
+        if match is None:
+            return None
+        if text[match.start() - 1].isspace():
+            end = match.end()
+            if text.find("\n", start, end) < 0:  # on the start tag's first line
+                return Location(source.file, line, col + end - start)
+            return source.location(end)
+        position = match.start() + 1
+
+
+def _deferred_location(source: SourceFile, window: int, tag: Location, name: str) -> Location:
+    """What :func:`_attribute_location` found for the start tag at ``tag`` in window number
+    ``window`` of ``source``, that window being cut again from the whole text read again
+    (``tag`` itself if the file can no longer be read as it was)."""
+    base, end, first_line = source.windows[window]
+    whole = source.whole_text()
+    if whole is None or len(whole) < end:
+        return tag
+    view = SourceFile(source.path, whole[base:end])
+    view.file = source.file
+    view.first_line = first_line
+    start = view.offset(tag.line) + tag.col - 1
+    found = _attribute_location(view, start, tag.line, tag.col, name)
+    return tag if found is None else found
 
 
 def read_root(entity: XmlEntity) -> str | None:

@@ -89,7 +89,7 @@ class XmlParser:
 
         from launchkit.frontend.xml.stream import ElementStream, NotStreamable
 
-        stream = ElementStream(self.actions, path)
+        stream = ElementStream(self.actions, path, whole)
         try:
             for chunk in chunks:
                 stream.feed(chunk)

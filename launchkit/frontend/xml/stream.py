@@ -12,6 +12,7 @@ from __future__ import annotations
 
 import codecs
 import re
+from collections.abc import Callable
 from pathlib import Path
 from typing import Any
 
@@ -43,9 +44,10 @@ class NotStreamable(Exception):
 class ElementStream:
     """Feeds a file's bytes to lxml and parses each top-level element as it completes."""
 
-    def __init__(self, actions: ActionParser, path: Path) -> None:
+    def __init__(self, actions: ActionParser, path: Path, whole: Callable[[], bytes]) -> None:
         self.actions = actions
         self.path = path
+        self.whole = whole  # the file's bytes again (for locations found after the stream)
         # end events only: an element is complete there, and no proxy is made for its start
         self.parser = etree.XMLPullParser(events=("end",), **PARSER_OPTIONS)
         self.source = SourceFile(path)
@@ -62,6 +64,8 @@ class ElementStream:
         if self.decoder is None:
             self.encoding = _stream_encoding(chunk)
             self.decoder = codecs.getincrementaldecoder(self.encoding)("replace")
+            whole, encoding = self.whole, self.encoding
+            self.source.reread = lambda: whole().decode(encoding, "replace")
         self.source.forget_before(self.keep_from - LINES_BACK)
         try:
             self.source.append(self.decoder.decode(chunk))
@@ -82,15 +86,28 @@ class ElementStream:
 
     def _read_events(self) -> None:
         element: etree._Element
+        parse, parsed, source = self.actions.parse_action, self.parsed, self.source
         for _, element in self.parser.read_events():  # type: ignore[assignment]
             parent = element.getparent()
             if parent is None:  # the root's end: the file's last element
                 if self.root is None:
                     self._start_root(element)
-            elif parent is self.root or parent.getparent() is None:
+                continue
+            if parent is not self.root:
+                if parent.getparent() is not None:  # inside a top-level element
+                    continue
                 if self.root is None:
                     self._start_root(parent)
-                self._top_level(parent, element)
+            # a top-level element (one per action: a large file's loop, kept inline)
+            tag = element.tag
+            if self.error is None and isinstance(tag, str):
+                sourceline: int | None = element.sourceline  # type: ignore[assignment]
+                try:
+                    parsed.append(parse(XmlEntity(element, source, sourceline, tag)))
+                except LaunchFileError as error:
+                    self.error = error  # raised at the end, unless the file is not well-formed
+                self.keep_from = sourceline or self.keep_from
+            parent.remove(element)  # its action holds no part of it: the tree stays small
 
     def _start_root(self, root: etree._Element) -> None:
         """The root, met at its first child's end (its attributes are all read by then)."""
@@ -102,17 +119,6 @@ class ElementStream:
             self.deprecated = read_root(XmlEntity(root, self.source))
         except LaunchFileError as error:
             self.error = error
-
-    def _top_level(self, root: etree._Element, element: etree._Element) -> None:
-        if self.error is None and isinstance(element.tag, str):
-            sourceline: int | None = element.sourceline  # type: ignore[assignment]
-            try:
-                entity = XmlEntity(element, self.source, sourceline)
-                self.parsed.append(self.actions.parse_action(entity))
-            except LaunchFileError as error:
-                self.error = error  # raised at the end, unless the file is not well-formed
-            self.keep_from = sourceline or self.keep_from
-        root.remove(element)  # its action holds no part of it: the tree stays small
 
 
 def _stream_encoding(head: bytes) -> str:
