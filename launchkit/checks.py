@@ -14,7 +14,6 @@ from pathlib import Path
 from launchkit._record import Record
 from launchkit.description.actions import DeclareArgument, Include
 from launchkit.description.actions.base import Action
-from launchkit.description.conditions import Condition
 from launchkit.description.launch_description import LaunchDescription, walk
 from launchkit.description.substitutions import (
     Dirname,
@@ -228,9 +227,7 @@ def _var_names(value: object) -> set[str]:
             names.add(name)
     elif hasattr(value, "args") and isinstance(value, Substitution):
         names |= _var_names(getattr(value, "args", ()))
-    elif isinstance(value, Condition):  # its value: its location may be found only if asked
-        names |= _var_names(value.value)
-    elif isinstance(value, Record):  # an include's <arg>, a <keep>
+    elif isinstance(value, Record):  # a condition, an include's <arg>, a <keep>
         names |= _var_names(list(value.fields()))
     elif hasattr(value, "__dataclass_fields__"):  # the values of a node's tags
         names |= _var_names([getattr(value, name) for name in value.__dataclass_fields__])

@@ -17,8 +17,6 @@ outermost first: ``a.launch.xml:12:3 -> b.launch.py:40: error: ...``.
 
 from __future__ import annotations
 
-from typing import Any
-
 from launchkit._record import Frozen, slot_setters
 
 _NAMED_CONTROLS = {"\n": "\\n", "\r": "\\r", "\0": "\\0"}
@@ -64,10 +62,6 @@ class Location(Frozen):
 
 
 _set_file, _set_line, _set_col = slot_setters(Location)
-
-#: A location found only when first asked for: a function and the arguments it finds it
-#: with, as a tuple (nothing to build but the tuple: a large file has many never asked for).
-DeferredLocation = tuple[Any, ...]
 
 
 class LaunchkitError(Exception):

@@ -7,7 +7,7 @@ from typing import TYPE_CHECKING
 from launchkit._record import Frozen, slot_setters
 from launchkit.description.substitutions.base import Text, Value, describe, perform
 from launchkit.description.truth import CONDITION_EXPECTED, condition_value
-from launchkit.errors import DeferredLocation, Location, RuntimeLaunchError
+from launchkit.errors import Location, RuntimeLaunchError
 
 if TYPE_CHECKING:
     from launchkit.description.launch_context import LaunchContext
@@ -18,35 +18,17 @@ _SPELLED = {"true": True, "1": True, "false": False, "0": False}
 
 
 class Condition(Frozen):
-    """``if="VALUE"`` (or ``unless`` when ``negate``), evaluated with the strict rule.
+    """``if="VALUE"`` (or ``unless`` when ``negate``), evaluated with the strict rule."""
 
-    Its ``location`` may be given deferred (see :data:`~launchkit.errors.DeferredLocation`):
-    it is then found when first asked for (an error, a comparison), as a large XML file's
-    conditions are, most of which are never asked."""
-
-    __slots__ = ("negate", "value", "where")
+    __slots__ = ("location", "negate", "value")
     value: Value
     negate: bool
-    where: Location | DeferredLocation | None
+    location: Location | None
 
-    def __init__(
-        self, value: Value, negate: bool, location: Location | DeferredLocation | None = None
-    ) -> None:
+    def __init__(self, value: Value, negate: bool, location: Location | None = None) -> None:
         _set_value(self, value)
         _set_negate(self, negate)
-        _set_where(self, location)
-
-    @property
-    def location(self) -> Location | None:
-        """Where the condition is written."""
-        where = self.where
-        if type(where) is tuple:
-            where = where[0](*where[1:])
-            _set_where(self, where)
-        return where  # type: ignore[return-value]
-
-    def __reduce__(self) -> tuple[object, ...]:
-        return Condition, (self.value, self.negate, self.location)
+        _set_location(self, location)
 
     def evaluate(self, context: LaunchContext) -> bool:
         """Whether the guarded action runs; an error for anything but true/1/false/0."""
@@ -68,6 +50,4 @@ class Condition(Frozen):
         return not result if self.negate else result
 
 
-_set_value, _set_negate, _set_where = slot_setters(Condition)
-# compared, hashed and shown with its location found (the same deferred or not)
-Condition.field_names = ("value", "negate", "location")
+_set_value, _set_negate, _set_location = slot_setters(Condition)

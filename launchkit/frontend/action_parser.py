@@ -110,7 +110,7 @@ def parse_condition(entity: Entity) -> Condition | None:
             attr="unless",
         )
     if when is not None:
-        return Condition(when, False, entity.deferred_attribute_location("if"))
+        return Condition(when, False, entity.attribute_location("if"))
     if unless is not None:
-        return Condition(unless, True, entity.deferred_attribute_location("unless"))
+        return Condition(unless, True, entity.attribute_location("unless"))
     return None

@@ -20,7 +20,7 @@ from collections.abc import Sequence
 from launchkit.description.substitutions.base import Text, Value, literal
 from launchkit.description.substitutions.grammar import parse_value
 from launchkit.description.truth import BOOL_EXPECTED, bool_value
-from launchkit.errors import DeferredLocation, LaunchFileError, Location
+from launchkit.errors import LaunchFileError, Location
 
 _CHECKS = {
     "bool": BOOL_EXPECTED,
@@ -78,12 +78,6 @@ class Entity(ABC):
     def example(self, name: str) -> str:
         """How attribute ``name`` is written, for "expected" texts."""
         return f'{name}="..."'
-
-    def deferred_attribute_location(self, name: str) -> Location | DeferredLocation:
-        """:meth:`attribute_location`, or the means to find it when first asked for (a
-        syntax that can find it later more cheaply than now: conditions' locations are
-        seldom asked for). Found now by default."""
-        return self.attribute_location(name)
 
     def key_location(self, name: str) -> Location:
         """Where attribute ``name`` is written (for an unknown attribute)."""

@@ -9,7 +9,6 @@ check the structure that bounds them, without timing.
 from __future__ import annotations
 
 import gc
-import pickle
 from pathlib import Path
 
 import pytest
@@ -17,9 +16,8 @@ import pytest
 from launchkit.api import check_report
 from launchkit.description.actions import SetConfiguration
 from launchkit.description.actions.base import Action
-from launchkit.description.conditions import Condition
 from launchkit.description.substitutions.base import Text
-from launchkit.errors import LaunchFileError, RuntimeLaunchError
+from launchkit.errors import LaunchFileError
 from launchkit.frontend.action_parser import ActionParser
 from launchkit.frontend.base_entity import Entity
 from launchkit.frontend.launch_loader import LaunchLoader
@@ -230,46 +228,3 @@ def test_short_plain_values_are_one_object_per_file(tmp_path: Path) -> None:
     assert [p.value for p in probes[-2:]] == [  # type: ignore[attr-defined]
         (Text(f"n{i}"),) for i in range(2 * SHARED_VALUES - 2, 2 * SHARED_VALUES)
     ]
-
-
-def test_deferred_condition_locations_are_the_whole_trees(tmp_path: Path) -> None:
-    # a streamed file's conditions find their location only when asked, long after the text
-    # window they were read in is gone: the same locations as the whole tree's, found at once
-    lines = [f'<let name="v{i}" value="x" if="true"/>' for i in range(ENTRIES)]
-    lines[0] = "<let name='a' value='x' unless = 'false'/>"
-    lines[ENTRIES // 2] = '<let name="b"\n     value="x" if=\n"$(var c)"/>'
-    lines[-1] = '<let value="name if=" name="d"\tif="1"/>'  # "if=" in another value first
-    path = _write(tmp_path / "big.launch.xml", lines).resolve()
-    streamed = LaunchLoader().load(path).actions
-    whole = XmlParser(standard_parser()).parse_whole(path.read_bytes(), path).actions
-    assert isinstance(streamed[0].condition, Condition)
-    assert isinstance(streamed[0].condition.where, tuple)  # deferred
-    assert isinstance(whole[0].condition, Condition) and whole[0].condition.where is not None
-    assert not isinstance(whole[0].condition.where, tuple)  # a whole tree's: found at once
-    deferred = [a.condition.location for a in streamed if a.condition]
-    assert deferred == [a.condition.location for a in whole if a.condition]
-    assert [str(loc) for loc in deferred[:1] + deferred[ENTRIES // 2 : ENTRIES // 2 + 1]] == [
-        f"{path}:2:37",
-        f"{path}:{ENTRIES // 2 + 4}:2",
-    ]
-    assert streamed[1].condition == whole[1].condition  # compared with its location
-    assert pickle.loads(pickle.dumps(streamed[2].condition)) == whole[2].condition
-
-
-def test_a_bad_condition_far_in_a_large_file_names_its_place(tmp_path: Path) -> None:
-    lines = [f'<let name="v{i}" value="x" if="true"/>' for i in range(ENTRIES)]
-    lines[-3] = '<let name="w" value="x"\n     if="$(var maybe)"/>'
-    path = _write(tmp_path / "big.launch.xml", lines).resolve()
-    with pytest.raises(RuntimeLaunchError) as raised:
-        check_report(path, {"maybe": "perhaps"})
-    assert str(raised.value.location) == f"{path}:{ENTRIES}:10"
-    assert "invalid if condition 'perhaps'" in str(raised.value)
-
-
-def test_a_deferred_location_once_the_file_is_gone_is_its_tags(tmp_path: Path) -> None:
-    lines = [f'<let name="v{i}" value="x" if="true"/>' for i in range(ENTRIES)]
-    path = _write(tmp_path / "big.launch.xml", lines).resolve()
-    actions = LaunchLoader().load(path).actions
-    path.unlink()
-    condition = actions[5].condition
-    assert condition is not None and condition.location == actions[5].location

@@ -6,7 +6,7 @@ from __future__ import annotations
 import bisect
 import functools
 import re
-from collections.abc import Callable, Iterator
+from collections.abc import Iterator
 from itertools import accumulate, count
 from operator import add
 from pathlib import Path
@@ -14,7 +14,7 @@ from typing import TYPE_CHECKING
 
 from launchkit.description.substitutions.base import Text, Value
 from launchkit.description.substitutions.grammar import parse_value
-from launchkit.errors import DeferredLocation, Location
+from launchkit.errors import Location
 from launchkit.frontend.base_entity import Entity
 
 if TYPE_CHECKING:
@@ -56,18 +56,7 @@ class SourceFile:
     all of it, or, when the file is read as a stream, a window of whole lines that grows as
     text is read and is cut from the front once the elements there are done."""
 
-    __slots__ = (
-        "_whole",
-        "base",
-        "file",
-        "first_line",
-        "line_starts",
-        "path",
-        "plain_values",
-        "reread",
-        "text",
-        "windows",
-    )
+    __slots__ = ("file", "first_line", "line_starts", "path", "plain_values", "text")
 
     def __init__(self, path: Path, text: str = "") -> None:
         self.path = path
@@ -80,29 +69,12 @@ class SourceFile:
         #: that write the same text (``if="false"``, ``output="screen"``; values are never
         #: changed once parsed): one object, and no new one made, per element of a large file.
         self.plain_values: dict[str, Value] = {}
-        self.base = 0  # where the window starts in the whole text
-        #: The whole text read again (set by a stream): attribute locations that are seldom
-        #: asked for (conditions') are then found only when asked, in the window they were
-        #: read in (``windows``: each one's start, end and first line), cut again from it.
-        self.reread: Callable[[], str] | None = None
-        self.windows: list[tuple[int, int, int]] = []
-        self._whole: str | None = None
 
     def append(self, text: str) -> None:
         """Text read after the window's end."""
         start = len(self.text)
         self.text += text
         self.line_starts.extend(_line_starts(text, start))
-        self.windows.append((self.base, self.base + len(self.text), self.first_line))
-
-    def whole_text(self) -> str | None:
-        """The whole text read again (once), or None when it cannot be."""
-        if self._whole is None and self.reread is not None:
-            try:
-                self._whole = self.reread()
-            except OSError:
-                self.reread = None
-        return self._whole
 
     def forget_before(self, line: int) -> None:
         """Drop the text before 1-based ``line`` (offsets into the window change)."""
@@ -111,7 +83,6 @@ class SourceFile:
             return
         cut = self.line_starts[index]
         self.text = self.text[cut:]
-        self.base += cut
         self.line_starts = [start - cut for start in self.line_starts[index:]]
         self.first_line += index
 
@@ -213,15 +184,28 @@ class XmlEntity(Entity):
 
     def attribute_location(self, name: str) -> Location:
         """Where attribute ``name``'s value begins (after the quote)."""
-        found = _attribute_location(self.source, self._start, self._line, self._col, name)
-        return self.location if found is None else found
-
-    def deferred_attribute_location(self, name: str) -> Location | DeferredLocation:
-        """As :meth:`Entity.deferred_attribute_location`: deferred in a streamed file."""
-        source = self.source
-        if source.reread is None:
-            return self.attribute_location(name)
-        return (_deferred_location, source, len(source.windows) - 1, self.location, name)
+        text = self.source.text
+        position = self._start
+        # the first NAME = " after a blank; the usual NAME=" found without the pattern (the
+        # first NAME in the text is where the pattern's first match would be, if it matches)
+        found = text.find(name, position)
+        if found > 0 and text[found - 1].isspace():
+            end = found + len(name) + 2
+            if text[end - 2 : end] in _EQUALS_QUOTE:
+                if text.find("\n", position, end) < 0:  # on the start tag's first line
+                    return Location(self.source.file, self._line, self._col + end - position)
+                return self.source.location(end)
+        pattern = _attribute_pattern(name)
+        while True:
+            match = pattern.search(text, position)
+            if match is None:
+                return self.location
+            if text[match.start() - 1].isspace():
+                end = match.end()
+                if text.find("\n", self._start, end) < 0:  # on the start tag's first line
+                    return Location(self.source.file, self._line, self._col + end - self._start)
+                return self.source.location(end)
+            position = match.start() + 1
 
     def attribute_names(self) -> list[str]:
         """The element's attribute names."""
@@ -265,51 +249,6 @@ class XmlEntity(Entity):
         return [
             XmlEntity(child, self.source) for child in self.element if isinstance(child.tag, str)
         ]
-
-
-def _attribute_location(
-    source: SourceFile, start: int, line: int, col: int, name: str
-) -> Location | None:
-    """Where attribute ``name``'s value begins in the start tag at offset ``start`` of the
-    window (at ``line``:``col``); None when it is not found."""
-    text = source.text
-    position = start
-    # the first NAME = " after a blank; the usual NAME=" found without the pattern (the
-    # first NAME in the text is where the pattern's first match would be, if it matches)
-    found = text.find(name, position)
-    if found > 0 and text[found - 1].isspace():
-        end = found + len(name) + 2
-        if text[end - 2 : end] in _EQUALS_QUOTE:
-            if text.find("\n", position, end) < 0:  # on the start tag's first line
-                return Location(source.file, line, col + end - position)
-            return source.location(end)
-    pattern = _attribute_pattern(name)
-    while True:
-        match = pattern.search(text, position)
-        if match is None:
-            return None
-        if text[match.start() - 1].isspace():
-            end = match.end()
-            if text.find("\n", start, end) < 0:  # on the start tag's first line
-                return Location(source.file, line, col + end - start)
-            return source.location(end)
-        position = match.start() + 1
-
-
-def _deferred_location(source: SourceFile, window: int, tag: Location, name: str) -> Location:
-    """What :func:`_attribute_location` found for the start tag at ``tag`` in window number
-    ``window`` of ``source``, that window being cut again from the whole text read again
-    (``tag`` itself if the file can no longer be read as it was)."""
-    base, end, first_line = source.windows[window]
-    whole = source.whole_text()
-    if whole is None or len(whole) < end:
-        return tag
-    view = SourceFile(source.path, whole[base:end])
-    view.file = source.file
-    view.first_line = first_line
-    start = view.offset(tag.line) + tag.col - 1
-    found = _attribute_location(view, start, tag.line, tag.col, name)
-    return tag if found is None else found
 
 
 def read_root(entity: XmlEntity) -> str | None:

@@ -89,7 +89,7 @@ class XmlParser:
 
         from launchkit.frontend.xml.stream import ElementStream, NotStreamable
 
-        stream = ElementStream(self.actions, path, whole)
+        stream = ElementStream(self.actions, path)
         try:
             for chunk in chunks:
                 stream.feed(chunk)

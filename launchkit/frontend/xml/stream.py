@@ -12,7 +12,6 @@ from __future__ import annotations
 
 import codecs
 import re
-from collections.abc import Callable
 from pathlib import Path
 from typing import Any
 
@@ -44,10 +43,9 @@ class NotStreamable(Exception):
 class ElementStream:
     """Feeds a file's bytes to lxml and parses each top-level element as it completes."""
 
-    def __init__(self, actions: ActionParser, path: Path, whole: Callable[[], bytes]) -> None:
+    def __init__(self, actions: ActionParser, path: Path) -> None:
         self.actions = actions
         self.path = path
-        self.whole = whole  # the file's bytes again (for locations found after the stream)
         # end events only: an element is complete there, and no proxy is made for its start
         self.parser = etree.XMLPullParser(events=("end",), **PARSER_OPTIONS)
         self.source = SourceFile(path)
@@ -64,8 +62,6 @@ class ElementStream:
         if self.decoder is None:
             self.encoding = _stream_encoding(chunk)
             self.decoder = codecs.getincrementaldecoder(self.encoding)("replace")
-            whole, encoding = self.whole, self.encoding
-            self.source.reread = lambda: whole().decode(encoding, "replace")
         self.source.forget_before(self.keep_from - LINES_BACK)
         try:
             self.source.append(self.decoder.decode(chunk))
