@@ -19,6 +19,8 @@ from launchkit.frontend.yaml.entity import YamlEntity, action_entity
 from launchkit.safe_yaml_fast import LineItem
 from launchkit.safe_yaml_fast.scalars import STR
 
+_NONE: frozenset[str] = frozenset()  # no key of another type
+
 
 def line_entity(parent: str, item: LineItem) -> Entity:
     """The entity of ``item``, an entry of ``parent``'s list of actions: a
@@ -40,9 +42,6 @@ def line_entity(parent: str, item: LineItem) -> Entity:
         else:
             others.append(key)
     return LineEntity(item, texts, frozenset(others))
-
-
-_NONE: frozenset[str] = frozenset()
 
 
 class LineEntity(Entity):
