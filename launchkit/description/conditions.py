@@ -18,7 +18,9 @@ _SPELLED = {"true": True, "1": True, "false": False, "0": False}
 
 
 class Condition(Frozen):
-    """``if="VALUE"`` (or ``unless`` when ``negate``), evaluated with the strict rule."""
+    """``if="VALUE"`` (or ``unless`` when ``negate``), evaluated with the strict rule;
+    ``location`` is where its error points (None where none is known, or can be: a literal
+    ``true``, ``1``, ``false`` or ``0``)."""
 
     __slots__ = ("location", "negate", "value")
     value: Value

@@ -15,6 +15,9 @@ from collections.abc import Callable, Iterable
 
 from launchkit.description.actions.base import Action
 from launchkit.description.conditions import Condition
+from launchkit.description.substitutions.base import Text, Value
+from launchkit.description.truth import condition_value
+from launchkit.errors import Location
 from launchkit.frontend.base_entity import Entity
 
 #: How deep actions may nest (a group in a group ...; real files nest a few levels): parsing
@@ -110,7 +113,16 @@ def parse_condition(entity: Entity) -> Condition | None:
             attr="unless",
         )
     if when is not None:
-        return Condition(when, False, entity.attribute_location("if"))
+        return Condition(when, False, _error_location(entity, "if", when))
     if unless is not None:
-        return Condition(unless, True, entity.attribute_location("unless"))
+        return Condition(unless, True, _error_location(entity, "unless", unless))
     return None
+
+
+def _error_location(entity: Entity, name: str, value: Value) -> Location | None:
+    """Where an error of the condition in attribute ``name`` would point: None for a literal
+    true, 1, false or 0, which evaluates without one (most conditions of a large file are
+    such, and finding an attribute's place is a fifth of reading an XML element)."""
+    if len(value) == 1 and type(value[0]) is Text and condition_value(value[0].text) is not None:
+        return None
+    return entity.attribute_location(name)

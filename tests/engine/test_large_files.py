@@ -17,7 +17,7 @@ from launchkit.api import check_report
 from launchkit.description.actions import SetConfiguration
 from launchkit.description.actions.base import Action
 from launchkit.description.substitutions.base import Text
-from launchkit.errors import LaunchFileError
+from launchkit.errors import LaunchFileError, LaunchkitError
 from launchkit.frontend.action_parser import ActionParser
 from launchkit.frontend.base_entity import Entity
 from launchkit.frontend.launch_loader import LaunchLoader
@@ -163,14 +163,17 @@ def test_process_attributes_are_checked_in_one_order_whatever_the_order_written(
 
 
 def test_conditions_and_unknown_attributes_far_in_a_large_file(tmp_path: Path) -> None:
-    lines = [f'<executable cmd="/bin/true" name="p{i}" if="false"/>' for i in range(ENTRIES)]
-    lines[-2] = '<executable cmd="/bin/true"\n     unless="true"/>'
+    lines = [f'<executable cmd="/bin/true" name="p{i}" if="$(var a)"/>' for i in range(ENTRIES)]
+    lines[-2] = '<executable cmd="/bin/true"\n     unless="$(var a)"/>'
+    lines[-3] = '<executable cmd="/bin/true" if="false"/>'
     path = _write(tmp_path / "big.launch.xml", lines).resolve()
     actions = LaunchLoader().load(path).actions
-    first, last = actions[0].condition, actions[-2].condition
+    first, last, literal = actions[0].condition, actions[-2].condition, actions[-3].condition
     assert first is not None and last is not None and last.negate
     assert str(first.location) == f"{path}:2:{3 + lines[0].index('if=') + len('if=') + 1}"
     assert str(last.location) == f"{path}:{ENTRIES + 1}:14"  # unless="... on its second line
+    # a literal true/false/1/0 cannot fail: its place is not looked for
+    assert literal is not None and literal.location is None
     lines[-5] = '<executable cmd="/bin/true" name="p" nmae="q"/>'
     _write(path, lines)
     with pytest.raises(LaunchFileError) as raised:
@@ -179,6 +182,17 @@ def test_conditions_and_unknown_attributes_far_in_a_large_file(tmp_path: Path) -
     assert str(raised.value.location) == f"{path}:{ENTRIES - 3}:{column}"
     assert "unknown attribute 'nmae' on <executable>" in str(raised.value)
     assert "(expected one of: cmd, if, name, unless)" in str(raised.value)  # as before
+
+
+@pytest.mark.parametrize("value", ["maybe", "$(var a)", "yes"])
+def test_a_condition_that_fails_names_its_place(tmp_path: Path, value: str) -> None:
+    # whether literal or not, a condition that is no true/false/1/0 fails at its attribute
+    lines = ['<let name="a" value="maybe"/>', f'<executable cmd="/bin/true" if="{value}"/>']
+    path = _write(tmp_path / "x.launch.xml", lines).resolve()
+    with pytest.raises(LaunchkitError) as raised:
+        check_report(path)
+    assert str(raised.value.location) == f"{path}:3:{3 + lines[1].index('if=') + len('if=') + 1}"
+    assert "invalid if condition" in str(raised.value)
 
 
 def test_a_python_launch_files_code_runs_with_the_cycle_collector(tmp_path: Path) -> None:
