@@ -11,10 +11,11 @@ import sys
 import threading
 from collections.abc import Callable, Mapping
 from pathlib import Path
-from typing import TYPE_CHECKING, Any, TypeVar
+from typing import TYPE_CHECKING, Any
 
+from launchkit.envvars import ROUTER as ROUTER_ENV
+from launchkit.envvars import VIEWER_PORT as VIEWER_PORT_ENV
 from launchkit.runtime.lifecycle import Escalation, escalate_until_exited
-from launchkit.runtime.network import ROUTER_ENV
 from launchkit.runtime.process import describe_exit
 from launchkit.testing import _procscan
 from launchkit.testing._deadline import Deadline
@@ -38,6 +39,7 @@ from launchkit.testing._isolation import (
     domain_id,
     free_loopback_port,
     router_endpoint,
+    without_shell_settings,
 )
 from launchkit.testing._process import ProcessHandle
 from launchkit.testing._result import LaunchResult
@@ -46,8 +48,6 @@ from launchkit.testing._waits import AllowedExits, AllowExit, Waits
 
 if TYPE_CHECKING:
     from launchkit.testing._topics import TopicProbe
-
-T = TypeVar("T")
 
 DEFAULT_READY_TIMEOUT = 30.0
 _STOP_MARGIN = 5.0  # beyond the launcher's own SIGINT -> SIGTERM -> SIGKILL escalation
@@ -77,8 +77,7 @@ class LaunchHandle:
         self.title = title
         self.log_dir = log_dir
         self.launcher_log = log_dir / "launcher.log"
-        port = free_loopback_port()
-        self.router = router_endpoint(port)
+        self.router = router_endpoint(free_loopback_port())
         self.domain_id = domain_id()
         self.state = LaunchState()
         self.waits = Waits(self.state, title, self.launcher_log, AllowedExits(allow_exit))
@@ -87,12 +86,15 @@ class LaunchHandle:
         self._stop_waits: list[float] = []  # scaled seconds each stop signal was given
         self._result: LaunchResult | None = None
         environment = {
-            **os.environ,
+            **without_shell_settings(os.environ),
             "ROS_LOG_DIR": str(log_dir / "ros"),
             "PYTHONUNBUFFERED": "1",
+            VIEWER_PORT_ENV: str(free_loopback_port()),
             **(env or {}),
             **self.ros_env,
         }
+        # the rviz2 stand-in's port, unless the launch file gives it one (viewer_port:=...)
+        self.viewer_port = int(environment[VIEWER_PORT_ENV])
         ours, theirs = socket.socketpair()
         fd = theirs.fileno()
         command = [sys.executable, "-m", "launchkit", "run", "--router", self.router]
@@ -209,20 +211,6 @@ class LaunchHandle:
                 label: [line.text for line in record.lines]
                 for label, record in self.state.processes.items()
             }
-
-    def wait_for(
-        self,
-        what: str,
-        timeout: float,
-        check: Callable[[], T | None],
-        *,
-        subject: str | None = None,
-    ) -> T:
-        """Wait until ``check()`` (called with the state locked, after every event) returns
-        something other than None; that value. ``subject`` names the process the wait is
-        about. See :meth:`Waits.until` for when it fails."""
-        __tracebackhide__ = True
-        return self.waits.until(what, timeout, check, subject=subject)
 
     def check_exits_noted(self) -> None:
         """Raise :class:`UnexpectedExit` if a process died unexpectedly and the test never

@@ -1,11 +1,15 @@
-"""Keeping launches apart: each gets its own router port and ROS domain."""
+"""Keeping launches apart: each gets its own router port, ROS domain and viewer port, and
+none of the shell's launchkit settings."""
 
 from __future__ import annotations
 
 import itertools
 import os
 import socket
+from collections.abc import Mapping
 from pathlib import Path
+
+from launchkit.envvars import CACHE_DIR, NAMES
 
 ROS_DOMAIN_ENV = "ROS_DOMAIN_ID"
 # ROS 2 domain ids that are safe on every platform are 0-101; 0 is everyone's default
@@ -14,6 +18,8 @@ _WORKER_SPREAD = 50
 _counter = itertools.count()
 # DDS (RTPS) gives domain d the UDP ports 7400 + 250·d and the 249 after them
 _RTPS_BASE, _RTPS_GAIN = 7400, 250
+# the LAUNCHKIT_* variables a launch never inherits from the test process
+_SHELL_SETTINGS = frozenset(NAMES) - {CACHE_DIR}
 
 
 def free_loopback_port() -> int:
@@ -21,6 +27,13 @@ def free_loopback_port() -> int:
     with socket.socket(socket.AF_INET, socket.SOCK_STREAM) as probe:
         probe.bind(("127.0.0.1", 0))
         return int(probe.getsockname()[1])
+
+
+def without_shell_settings(environ: Mapping[str, str]) -> dict[str, str]:
+    """``environ`` without its ``LAUNCHKIT_*`` settings (``launchkit.envvars``), but for the
+    cache folder (it changes nothing but speed): a launch a test starts must not join the router,
+    the federation or the viewer port a user's shell names, nor log by that shell's limits."""
+    return {name: value for name, value in environ.items() if name not in _SHELL_SETTINGS}
 
 
 def router_endpoint(port: int) -> str:

@@ -2,16 +2,13 @@
 
 from __future__ import annotations
 
-from collections.abc import Callable
-from typing import Protocol, TypeVar
+from typing import Protocol
 
 from launchkit.testing._errors import LaunchTestError
 from launchkit.testing._evidence import process_status
 from launchkit.testing._matchers import Matcher, compile_matcher
 from launchkit.testing._state import LaunchState, ProcessRecord
-from launchkit.testing._waits import Impossible
-
-T = TypeVar("T")
+from launchkit.testing._waits import Impossible, Waits
 
 
 class LaunchView(Protocol):
@@ -19,19 +16,10 @@ class LaunchView(Protocol):
 
     title: str
     state: LaunchState
+    waits: Waits
 
     def process_names(self) -> str:
         """The labels of the processes started so far."""
-
-    def wait_for(
-        self,
-        what: str,
-        timeout: float,
-        check: Callable[[], T | None],
-        *,
-        subject: str | None = None,
-    ) -> T:
-        """Wait until ``check()`` returns something other than None; that value."""
 
 
 DEFAULT_TIMEOUT = 10.0
@@ -154,7 +142,7 @@ class ProcessHandle:
             record = self._find()
             return record.pid if record is not None else None
 
-        return self._launch.wait_for(f"process '{self.query}' to start", timeout, check)
+        return self._launch.waits.until(f"process '{self.query}' to start", timeout, check)
 
     def wait_output(
         self, matcher: Matcher, timeout: float = DEFAULT_TIMEOUT, *, stream: str = "any"
@@ -186,7 +174,7 @@ class ProcessHandle:
 
         # a line it printed before dying still counts; a line it never printed is reported by
         # ``check`` as impossible once it has exited
-        return self._launch.wait_for(
+        return self._launch.waits.until(
             f"{words} from process '{self.query}'{where}", timeout, check, subject=self.query
         )
 
@@ -205,6 +193,6 @@ class ProcessHandle:
             record.noted = True
             return record.returncode
 
-        return self._launch.wait_for(
+        return self._launch.waits.until(
             f"process '{self.query}' to exit", timeout, check, subject=self.query
         )

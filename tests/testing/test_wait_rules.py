@@ -19,7 +19,7 @@ def _await_death(handle: LaunchHandle, name: str) -> None:
     def dead() -> bool | None:
         return any(not record.running for record in handle.state.find(name)) or None
 
-    handle.wait_for(f"process '{name}' to exit (unnoted)", 10, dead)
+    handle.waits.until(f"process '{name}' to exit (unnoted)", 10, dead)
 
 
 def test_talk(launch):
@@ -77,7 +77,7 @@ def test_deaths_the_test_never_noted_fail_it_at_teardown(pytester):
         def launch_and_await_the_quitter(launch, **options):
             h = launch(TALK, **options)
             dead = lambda: any(not r.running for r in h.state.find("quitter")) or None
-            h.wait_for("the quitter to exit", 10, dead)  # without taking note of it
+            h.waits.until("the quitter to exit", 10, dead)  # without taking note of it
             return h
 
         def test_unnoted(launch):

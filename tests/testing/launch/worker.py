@@ -1,7 +1,8 @@
 """Small processes with known behaviour for the test plugin's self-tests.
 
 worker.py talk NAME [COUNT]   print COUNT lines, then "NAME waiting"; exit 0 on SIGINT
-worker.py env                 print the isolation variables, then wait; exit 0 on SIGINT
+worker.py env                 print its LAUNCHKIT_* and ROS_* variables, then wait; exit 0 on
+                              SIGINT
 worker.py crash CODE          print "crashing", then exit with CODE
 worker.py stubborn            ignore SIGINT (the launcher must escalate to SIGTERM)
 worker.py very-stubborn       ignore SIGINT and SIGTERM (only SIGKILL ends it)
@@ -37,8 +38,9 @@ def main(argv: list[str]) -> int:
         _announce_and_wait(f"{name} waiting")
     elif mode == "env":
         _exit_on_sigint()
-        for variable in ("LAUNCHKIT_ROUTER", "ROS_DOMAIN_ID"):
-            print(f"{variable}={os.environ.get(variable, '')}", flush=True)
+        for variable, value in sorted(os.environ.items()):
+            if variable.startswith(("LAUNCHKIT_", "ROS_")):
+                print(f"{variable}={value}", flush=True)
         _announce_and_wait("env printed")
     elif mode == "crash":
         print("crashing", flush=True)
