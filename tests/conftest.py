@@ -1,12 +1,12 @@
-"""Shared fixtures: evaluate inline launch XML without starting anything."""
+"""The suite's environment (see tests/suite_env.py) and shared fixtures: evaluate inline launch
+XML without starting anything."""
 
 from __future__ import annotations
 
 import os
 import shutil
 import signal
-import tempfile
-from collections.abc import Callable, Mapping
+from collections.abc import Callable, Iterator, Mapping
 from dataclasses import dataclass, field
 from pathlib import Path
 
@@ -15,20 +15,20 @@ import pytest
 from launchkit.checks import check_tree
 from launchkit.description.launch_context import LaunchContext
 from launchkit.description.process_spec import ProcessSpec
+from launchkit.envvars import ROUTER
 from launchkit.frontend.launch_loader import LaunchLoader
 from launchkit.packages import PackageIndex
 from launchkit.runtime.recorder import Recorded, Recorder
+from tests import suite_env
+from tests.support import hosted_router
 
-# No test starts the shared background router unless it means to (tests/ros/test_router_*.py
-# set this back for their commands): a stray one would outlive the test that started it.
-os.environ["LAUNCHKIT_ROUTER_AUTOSTART"] = "0"
-
-# The message definitions' cache (launchkit/ros/msgs/_defcache.py) goes to a folder of the test
-# run, for every process the tests start, never to the real home's ~/.cache. Set before pytest
-# starts its xdist workers, which inherit it; the run that made it removes it.
-_OWN_CACHE = None if os.environ.get("LAUNCHKIT_CACHE_DIR") else tempfile.mkdtemp(prefix="lk-cache-")
-if _OWN_CACHE is not None:
-    os.environ["LAUNCHKIT_CACHE_DIR"] = _OWN_CACHE
+# The suite's environment (tests/suite_env.py): set before pytest starts its xdist workers,
+# which inherit it; the private defaults again per process (each worker its own) and per test.
+_RUN_DIR, _OWN_RUN_DIR = suite_env.run_dir()
+_SUITE_ENVIRONMENT = suite_env.suite_environment(os.environ, _RUN_DIR)
+os.environ.clear()
+os.environ.update(_SUITE_ENVIRONMENT)
+os.environ.update(suite_env.private_defaults())
 
 
 @dataclass
@@ -74,9 +74,29 @@ def pytest_configure(config: pytest.Config) -> None:
 
 
 def pytest_unconfigure(config: pytest.Config) -> None:
-    """Remove the test run's message-definition cache (see above)."""
-    if _OWN_CACHE is not None:
-        shutil.rmtree(_OWN_CACHE, ignore_errors=True)
+    """Remove the run's folder (see above), once its last process is done with it."""
+    if _OWN_RUN_DIR:
+        shutil.rmtree(_RUN_DIR, ignore_errors=True)
+
+
+@pytest.fixture(autouse=True)
+def _private_defaults(
+    monkeypatch: pytest.MonkeyPatch, tmp_path_factory: pytest.TempPathFactory
+) -> None:
+    """Each test its own router port, viewer port and ROS domain for whatever it starts without
+    naming one, and its own log folder (so ``latest`` is its own run)."""
+    for name, value in suite_env.private_defaults().items():
+        monkeypatch.setenv(name, value)
+    monkeypatch.setenv("ROS_LOG_DIR", str(tmp_path_factory.mktemp("ros_log")))
+
+
+@pytest.fixture
+def router(monkeypatch: pytest.MonkeyPatch) -> Iterator[str]:
+    """A router hosted by the test process on a free loopback port; the processes the test
+    starts are told of it (``LAUNCHKIT_ROUTER``)."""
+    with hosted_router() as endpoint:
+        monkeypatch.setenv(ROUTER, endpoint)
+        yield endpoint
 
 
 @pytest.fixture

@@ -1,16 +1,14 @@
-"""Helpers for the bag tests: a router per test, ``launchkit bag`` processes, probe nodes,
-message samples filled from the type definitions, and waits with deadlines."""
+"""Helpers for the bag tests: ``launchkit bag`` processes, probe nodes, and message samples
+filled from the type definitions."""
 
 from __future__ import annotations
 
 import os
 import signal
-import socket
 import subprocess
 import sys
 import threading
-import time
-from collections.abc import Callable, Iterator
+from collections.abc import Iterator
 from contextlib import contextmanager
 from pathlib import Path
 from typing import Any
@@ -20,6 +18,7 @@ import numpy as np
 import launchkit.ros as ros
 from launchkit.ros.msgs import get_message
 from launchkit.ros.msgs._typestore import typestore
+from tests.support import wait_until
 
 _BASE, _NAME, _ARRAY, _SEQUENCE = 1, 2, 3, 4
 _INT_RANGES = {
@@ -34,22 +33,6 @@ _INT_RANGES = {
     "int64": (-(2**63), 2**63 - 1),
     "uint64": (0, 2**64 - 1),
 }
-
-
-def free_port() -> int:
-    """A loopback TCP port nothing listens on right now."""
-    with socket.socket() as sock:
-        sock.bind(("127.0.0.1", 0))
-        return int(sock.getsockname()[1])
-
-
-def wait_for(predicate: Callable[[], bool], timeout: float, what: str) -> None:
-    """Poll ``predicate`` until it holds; fail naming ``what`` after ``timeout`` seconds."""
-    deadline = time.monotonic() + timeout
-    while not predicate():
-        if time.monotonic() > deadline:
-            raise AssertionError(f"timed out after {timeout} s waiting for {what}")
-        time.sleep(0.02)
 
 
 def launchkit_env(router: str) -> dict[str, str]:
@@ -99,7 +82,7 @@ class BagProcess:
 
     def wait_line(self, text: str, timeout: float = 20) -> None:
         """Wait for a line containing ``text`` (fails early if the process exits)."""
-        wait_for(
+        wait_until(
             lambda: any(text in line for line in self.lines) or self.proc.poll() is not None,
             timeout,
             f"a line with {text!r} from launchkit bag; output:\n{self.output}",

@@ -12,7 +12,8 @@ from launchkit.bag.recorder import Recorder, RecorderOptions
 from launchkit.bag.selection import TopicSelection
 from launchkit.bag.storage import BagWriter, WriterOptions
 from launchkit.bag.writer_thread import WriterThread
-from tests.bag.helpers import Probe, wait_for
+from tests.bag.helpers import Probe
+from tests.support import wait_until
 
 
 @dataclass
@@ -30,11 +31,11 @@ class InProcessRecording:
             self.recorder.discover()
             return len(self.recorder.subscriptions) >= topics
 
-        wait_for(subscribed, timeout, f"the recorder to subscribe to {topics} topics")
+        wait_until(subscribed, timeout, f"the recorder to subscribe to {topics} topics")
 
     def wait_received(self, count: int, timeout: float = 30) -> None:
         """Wait until ``count`` messages reached the recorder."""
-        wait_for(
+        wait_until(
             lambda: sum(self.recorder.received.values()) >= count,
             timeout,
             f"{count} messages at the recorder (got {dict(self.recorder.received)})",

@@ -14,7 +14,8 @@ import pytest
 
 from launchkit.bag.info import file_size, format_info
 from launchkit.bag.storage import WriterOptions
-from tests.bag.helpers import free_port, run_bag
+from launchkit.testing._isolation import free_loopback_port, router_endpoint
+from tests.bag.helpers import run_bag
 from tests.bag.test_storage import T0, write_bag
 
 
@@ -119,7 +120,7 @@ def _bag(tmp_path: Path) -> str:
 )
 def test_mistakes_are_one_line_and_exit_2(tmp_path: Path, args: list[str], message: str) -> None:
     # a router that nobody runs: the mistake must be found before it matters
-    router = f"tcp/127.0.0.1:{free_port()}"
+    router = router_endpoint(free_loopback_port())
     bag = _bag(tmp_path) if "{bag}" in " ".join(args) else ""
     result = run_bag(*[a.format(tmp=tmp_path, bag=bag) for a in args], router=router)
     assert result.returncode == 2, result.stdout + result.stderr
@@ -132,7 +133,7 @@ def test_record_without_a_router_waits_for_one_saying_so(tmp_path: Path) -> None
     # as every launchkit command (and an rmw_zenoh node): with no router to start (the suite
     # turns the shared one off), wait for one, say so once, and stop on Ctrl-C as an
     # interrupted command does (130), with nothing recorded
-    router = f"tcp/127.0.0.1:{free_port()}"
+    router = router_endpoint(free_loopback_port())
     env = {**os.environ, "LAUNCHKIT_ROUTER_AUTOSTART": "0"}
     recorder = subprocess.Popen(
         [sys.executable, "-m", "launchkit", "bag", "record", "-a", "-o", str(tmp_path / "bag"),

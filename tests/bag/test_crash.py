@@ -19,8 +19,9 @@ from rosbags.rosbag2 import Reader
 from launchkit.bag.reindex import reindex
 from launchkit.bag.storage import WriterOptions
 from launchkit.ros.msgs import deserialize
-from tests.bag.helpers import bag_process, probe, run_bag, wait_for
+from tests.bag.helpers import bag_process, probe, run_bag
 from tests.bag.test_storage import NS, write_bag
+from tests.support import wait_until
 
 
 def _flushed_messages(path: Path) -> int:
@@ -65,7 +66,7 @@ def test_a_killed_recorders_bag_reads_after_reindex(router: str, tmp_path: Path,
         publisher = counter.node.create_publisher(String, "/count", 100)
         with bag_process(router, "record", "/count", "-o", str(bag), *options) as recorder:
             recorder.wait_line("Subscribed to topic '/count'")
-            wait_for(lambda: publisher.get_subscription_count() == 1, 10, "the recorder's sub")
+            wait_until(lambda: publisher.get_subscription_count() == 1, 10, "the recorder's sub")
 
             def publish_until_flushed() -> bool:
                 nonlocal sent
@@ -75,7 +76,7 @@ def test_a_killed_recorders_bag_reads_after_reindex(router: str, tmp_path: Path,
                 return flushed(bag)
 
             try:
-                wait_for(publish_until_flushed, 60, "a flush to disk")
+                wait_until(publish_until_flushed, 60, "a flush to disk")
             except AssertionError as exc:
                 listing = {f.name: f.stat().st_size for f in bag.iterdir()}
                 raise AssertionError(f"{exc}; {sent} sent; {listing}\n{recorder.output}") from None
@@ -114,7 +115,7 @@ def test_sigterm_closes_the_bag_as_ctrl_c_does(router: str, tmp_path: Path) -> N
         publisher = counter.node.create_publisher(String, "/count", 10)
         with bag_process(router, "record", "-a", "-o", str(bag)) as recorder:
             recorder.wait_line("Subscribed to topic '/count'")
-            wait_for(lambda: publisher.get_subscription_count() == 1, 10, "the recorder's sub")
+            wait_until(lambda: publisher.get_subscription_count() == 1, 10, "the recorder's sub")
             publisher.publish(String(data="0"))
             recorder.proc.terminate()
             assert recorder.wait(30) == 0, recorder.output

@@ -21,7 +21,8 @@ from launchkit.bag.storage import BagWriter, WriterOptions
 from launchkit.ros import DurabilityPolicy, Parameter, QoSProfile, ReliabilityPolicy
 from launchkit.ros.msgs import message_definition, serialize, type_hash
 from launchkit.ros.qos import qos_profile_latched
-from tests.bag.helpers import bag_process, launchkit_env, probe, run_bag, wait_for
+from tests.bag.helpers import bag_process, launchkit_env, probe, run_bag
+from tests.support import wait_until
 
 NS = 1_000_000_000
 T0 = 1_700_000_000 * NS
@@ -66,7 +67,7 @@ def test_topics_remap_and_start_offset(router: str, tmp_path: Path) -> None:
         )  # fmt: skip
         assert played.returncode == 0, played.stdout + played.stderr
         expected = [str(n) for n in range(11, 20, 2)]
-        wait_for(lambda: len(renamed) >= len(expected), 10, f"{expected} on /renamed")
+        wait_until(lambda: len(renamed) >= len(expected), 10, f"{expected} on /renamed")
     assert renamed == expected
     assert (a, b) == ([], [])
     assert "Played 5 messages" in played.stderr + played.stdout
@@ -93,7 +94,7 @@ def test_clock_drives_nodes_on_sim_time(router: str, tmp_path: Path) -> None:
         )
         played = run_bag("play", str(bag), "--clock", "200", router=router)
         assert played.returncode == 0, played.stdout + played.stderr
-        wait_for(lambda: len(seen) == 11, 10, "11 messages on /a")
+        wait_until(lambda: len(seen) == 11, 10, "11 messages on /a")
     # /clock carries bag time (the bag's own /clock, at 0, is not played), and the node's clock
     # follows it: bag time, never the wall clock. The first message and the first /clock leave
     # together, on different topics: a message that overtakes that /clock sees the time a
@@ -114,9 +115,9 @@ def test_transient_local_topics_stay_latched_for_late_subscribers(
     with probe(router) as listener, bag_process(router, "play", str(bag)) as player:
         early = collect(listener.node, "/latched", LATCHED)
         ticks = collect(listener.node, "/tick")
-        wait_for(lambda: early == ["description"], 20, "the latched message")
+        wait_until(lambda: early == ["description"], 20, "the latched message")
         late = collect(listener.node, "/latched", LATCHED)
-        wait_for(lambda: late == ["description"], 10, "the latched message for a late subscriber")
+        wait_until(lambda: late == ["description"], 10, "the latched message for a late subscriber")
         assert len(ticks) < 24, "the player was still playing"
         (token,) = listener.node.context.graph.tokens("MP", "/latched")
         assert token.qos is not None and token.qos.durability == DurabilityPolicy.TRANSIENT_LOCAL
@@ -129,7 +130,7 @@ def test_loop_plays_again_until_interrupted(router: str, tmp_path: Path) -> None
     )
     with probe(router) as listener, bag_process(router, "play", str(bag), "--loop") as player:
         texts = collect(listener.node, "/a")
-        wait_for(lambda: len(texts) >= 12, 20, "more than two passes of the bag")
+        wait_until(lambda: len(texts) >= 12, 20, "more than two passes of the bag")
         assert player.interrupt() == 0, player.output
     assert texts[:10] == [str(n) for n in range(5)] * 2
 
@@ -165,7 +166,7 @@ def test_a_bag_written_by_rosbags_itself_plays(router: str, tmp_path: Path) -> N
         key = f"{listener.context.domain_id}/reading/**"
         zenoh_sub = listener.context.session.declare_subscriber(key, on_sample)
         with bag_process(router, "play", str(bag)) as player:
-            wait_for(lambda: len(texts) == 6 and len(raw) == 6, 20, "every message of the bag")
+            wait_until(lambda: len(texts) == 6 and len(raw) == 6, 20, "every message of the bag")
             assert player.wait(30) == 0, player.output
         zenoh_sub.undeclare()
     assert texts == [f"t{n}" for n in range(6)]
@@ -188,12 +189,12 @@ def test_keyboard_pauses_steps_and_resumes(router: str, tmp_path: Path) -> None:
         try:
             player.expect_exact("Press CURSOR_RIGHT for Play Next Message")
             player.send("\x1b[C")  # right arrow: the first message only
-            wait_for(lambda: texts == ["0"], 10, "one stepped message")
+            wait_until(lambda: texts == ["0"], 10, "one stepped message")
             player.send("s")  # 's' steps too
-            wait_for(lambda: texts == ["0", "1"], 10, "a second stepped message")
+            wait_until(lambda: texts == ["0", "1"], 10, "a second stepped message")
             player.send(" ")  # resume: the rest plays
             player.expect_exact("Resuming play.")
-            wait_for(lambda: len(texts) == 5, 10, "the rest of the bag")
+            wait_until(lambda: len(texts) == 5, 10, "the rest of the bag")
             player.expect(pexpect.EOF)
         finally:
             player.close(force=True)

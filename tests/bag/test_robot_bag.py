@@ -18,7 +18,8 @@ from rosbags.rosbag2 import Reader
 from launchkit.bag.qos import offer_for_recorded
 from launchkit.ros.msgs import deserialize, get_message
 from launchkit.ros.topics import MessageInfo
-from tests.bag.helpers import probe, run_bag, wait_for
+from tests.bag.helpers import probe, run_bag
+from tests.support import wait_until
 
 TOPICS = ("/clock", "/joint_states", "/odom", "/robot_description", "/scan", "/tf", "/tf_static")
 STAMPED = ("/joint_states", "/odom", "/scan")
@@ -89,7 +90,7 @@ def test_the_robot_bag_replays_the_same_messages_in_order(router: str, robot_bag
             )
         played = run_bag("play", str(robot_bag), "--rate", "2", router=router)
         assert played.returncode == 0, played.stdout + played.stderr
-        wait_for(lambda: len(received) >= len(recorded), 20, f"{len(recorded)} messages")
+        wait_until(lambda: len(received) >= len(recorded), 20, f"{len(recorded)} messages")
 
     by_topic: dict[str, list[bytes]] = defaultdict(list)
     for topic, data in recorded:

@@ -9,15 +9,6 @@ import pytest
 from tests.engine.launcher import Launcher, wait_gone
 
 
-@pytest.fixture(autouse=True)
-def _private_log_root(
-    tmp_path_factory: pytest.TempPathFactory, monkeypatch: pytest.MonkeyPatch
-) -> None:
-    """Every ``launchkit run`` of these tests logs below a temporary folder, never in the
-    user's ``~/.launchkit/log`` (a run rejected before it starts has a log folder too)."""
-    monkeypatch.setenv("ROS_LOG_DIR", str(tmp_path_factory.mktemp("ros_log")))
-
-
 def write(tmp_path: Path, body: str, name: str = "t.launch.xml") -> Path:
     """A launch file with ``body`` inside ``<launch>``."""
     path = tmp_path / name

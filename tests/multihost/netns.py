@@ -19,6 +19,8 @@ import threading
 import time
 from dataclasses import dataclass, field
 
+from tests.suite_env import PRIVATE_DEFAULTS
+
 _counter = itertools.count()
 _alive: set[str] = set()
 
@@ -37,6 +39,14 @@ def netns_unavailable() -> str | None:
     return None
 
 
+def host_environment(env: dict[str, str] | None = None) -> dict[str, str]:
+    """The environment of a process on a host: the test's, less the private router, viewer
+    port and ROS domain the suite gives the test process (a host is a machine of its own, with
+    the defaults and ports of its own), plus ``env``."""
+    inherited = {name: value for name, value in os.environ.items() if name not in PRIVATE_DEFAULTS}
+    return {**inherited, **(env or {})}
+
+
 def _ip(*args: str) -> None:
     subprocess.run(["ip", *args], check=True, capture_output=True, text=True)
 
@@ -52,7 +62,7 @@ class Proc:
             stdout=subprocess.PIPE,
             stderr=subprocess.STDOUT,
             text=True,
-            env={**os.environ, **(env or {})},
+            env=host_environment(env),
             start_new_session=True,
         )
         self.lines: queue.Queue[str] = queue.Queue()
@@ -145,7 +155,7 @@ class Host:
             capture_output=True,
             text=True,
             timeout=timeout,
-            env={**os.environ, **(env or {})},
+            env=host_environment(env),
         )
         if check:
             assert done.returncode == 0, f"launchkit {args} exited {done.returncode}: {done.stderr}"

@@ -11,7 +11,7 @@ from pathlib import Path
 
 import pexpect
 from certs import Authority
-from netns import Hosts
+from netns import Hosts, host_environment
 
 PROBE = Path(__file__).resolve().parent / "nodes" / "viewer_probe.py"
 SPEED = re.compile(r"twist:\n  twist:\n    linear:\n      x: (-?[0-9.e+-]+)")
@@ -50,6 +50,7 @@ def test_simulation_on_a_viewer_teleop_and_recording_on_b(hosts: Hosts, tmp_path
          "teleop_twist_keyboard", "teleop_twist_keyboard"],
         encoding="utf-8",
         timeout=60,
+        env=host_environment(),
     )  # fmt: skip
     try:
         teleop.expect_exact("Moving around:")

@@ -1,27 +1,14 @@
-"""Fixtures for the ROS layer's tests: a private router per test, child processes, contexts."""
+"""Fixtures for the ROS layer's tests: child processes, contexts (on the ``router`` fixture's
+private router)."""
 
 from __future__ import annotations
 
 from collections.abc import Callable, Iterator
 
 import pytest
-from ros_helpers import Child, free_port
+from ros_helpers import Child
 
 from launchkit.ros.context import Context
-from launchkit.ros.router import RouterHandle, start_router
-
-
-@pytest.fixture
-def router_endpoint(monkeypatch: pytest.MonkeyPatch) -> Iterator[str]:
-    """A router hosted by the test process on a free loopback port; children are told of it."""
-    endpoint = f"tcp/127.0.0.1:{free_port()}"
-    handle: RouterHandle = start_router(endpoint)
-    assert handle.hosted
-    monkeypatch.setenv("LAUNCHKIT_ROUTER", endpoint)
-    try:
-        yield endpoint
-    finally:
-        handle.close()
 
 
 @pytest.fixture
@@ -36,13 +23,14 @@ def children() -> Iterator[list[Child]]:
 
 
 @pytest.fixture
-def contexts(router_endpoint: str) -> Iterator[Callable[[], Context]]:
-    """Make initialized contexts (each its own Zenoh session, like separate processes)."""
+def contexts(router: str) -> Iterator[Callable[..., Context]]:
+    """Make initialized contexts (each its own Zenoh session, like separate processes), in the
+    ROS domain given (``contexts(domain=0)``), else in ``$ROS_DOMAIN_ID``'s."""
     made: list[Context] = []
 
-    def make() -> Context:
+    def make(domain: int | None = None) -> Context:
         context = Context()
-        context.init([])
+        context.init([], domain=domain)
         made.append(context)
         return context
 

@@ -39,9 +39,7 @@ ros.shutdown()
 """
 
 
-def test_a_custom_signal_handler_stops_a_spin_once_loop(
-    router_endpoint: str, tmp_path: Path
-) -> None:
+def test_a_custom_signal_handler_stops_a_spin_once_loop(router: str, tmp_path: Path) -> None:
     script = tmp_path / "waiter.py"
     script.write_text(CHILD)
     for _ in range(3):

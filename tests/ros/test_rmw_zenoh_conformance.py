@@ -48,6 +48,9 @@ from launchkit.ros.keyexpr import (
 from launchkit.ros.msgs import serialize
 from launchkit.ros.session import close_session, open_session, peer_config
 
+# the vectors' topic and service keys are those of ROS domain 0
+VECTORS_DOMAIN = 0
+
 
 def _profile(fields: tuple[int, int, int, int]) -> QoSProfile:
     depth, reliability, durability, history = fields
@@ -181,9 +184,9 @@ def test_a_live_node_announces_what_rmw_zenoh_would(contexts: Callable[[], Conte
 
 
 @pytest.fixture
-def raw_peer(router_endpoint: str) -> zenoh.Session:
+def raw_peer(router: str) -> zenoh.Session:
     """A bare Zenoh peer on the test's router (it speaks rmw_zenoh's format by hand)."""
-    session = open_session(peer_config(router_endpoint))
+    session = open_session(peer_config(router))
     yield session
     close_session(session)
 
@@ -191,7 +194,7 @@ def raw_peer(router_endpoint: str) -> zenoh.Session:
 def test_a_sample_written_as_rmw_zenoh_writes_it_is_received(
     contexts: Callable[[], Context], raw_peer: zenoh.Session
 ) -> None:
-    node = Node("listener", context=contexts())
+    node = Node("listener", context=contexts(domain=VECTORS_DOMAIN))
     got: list[tuple[str, dict[str, object]]] = []
     node.create_subscription(String, "/chatter", lambda m, info: got.append((m.data, info)), 10)
     ((key_args, key),) = [v for v in TOPIC_KEYS if v[0][1] == "/chatter"]
@@ -215,7 +218,7 @@ def test_a_sample_written_as_rmw_zenoh_writes_it_is_received(
 def test_a_service_answers_an_rmw_zenoh_request_with_its_sequence_and_gid(
     contexts: Callable[[], Context], raw_peer: zenoh.Session
 ) -> None:
-    node = Node("server", context=contexts())
+    node = Node("server", context=contexts(domain=VECTORS_DOMAIN))
     node.create_service(
         SetBool, "/set_flag", lambda q, r: SetBool.Response(success=q.data, message="ok")
     )

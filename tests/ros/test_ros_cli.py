@@ -20,7 +20,7 @@ def launchkit(*args: str, timeout: float = 30) -> subprocess.CompletedProcess[st
 
 
 @pytest.fixture
-def talker(router_endpoint: str, children: list[Child]) -> Child:
+def talker(router: str, children: list[Child]) -> Child:
     """A running talker node."""
     child = Child([str(NODES_DIR / "talker.py")])
     children.append(child)
@@ -92,9 +92,7 @@ def test_node_param_and_service_commands(talker: Child) -> None:
         (["topic", "list", "--router", "nonsense"], "invalid router endpoint"),
     ],
 )
-def test_bad_input_is_one_line_and_exit_2(
-    router_endpoint: str, args: list[str], message: str
-) -> None:
+def test_bad_input_is_one_line_and_exit_2(router: str, args: list[str], message: str) -> None:
     result = launchkit(*args)
     assert result.returncode == 2, result.stderr
     assert message in result.stderr
@@ -134,7 +132,7 @@ def test_echo_latched_topic_hz_and_lists(talker: Child, children: list[Child]) -
 
 
 def test_topic_list_shows_topics_of_hidden_nodes_but_not_hidden_topics(
-    router_endpoint: str, children: list[Child]
+    router: str, children: list[Child]
 ) -> None:
     # `launchkit topic pub` publishes from a hidden node (_launchkit_cli_PID)
     for topic in ("/from_cli", "/_hidden/data"):

@@ -9,12 +9,11 @@ from ros_helpers import NODES_DIR, Child
 
 from launchkit.ros.router import start_router
 from launchkit.ros.session import close_session, open_session, peer_config
+from launchkit.testing._isolation import free_loopback_port, router_endpoint
 
 
 def test_nodes_reconnect_after_the_router_restarts(children: list[Child], monkeypatch) -> None:
-    from ros_helpers import free_port
-
-    endpoint = f"tcp/127.0.0.1:{free_port()}"
+    endpoint = router_endpoint(free_loopback_port())
     monkeypatch.setenv("LAUNCHKIT_ROUTER", endpoint)
     router = start_router(endpoint)
     try:
@@ -38,7 +37,7 @@ def test_nodes_reconnect_after_the_router_restarts(children: list[Child], monkey
         router.close()
 
 
-def test_listener_survives_its_talker_dying(router_endpoint: str, children: list[Child]) -> None:
+def test_listener_survives_its_talker_dying(router: str, children: list[Child]) -> None:
     listener = Child([str(NODES_DIR / "listener.py")])
     children.append(listener)
     talker = Child([str(NODES_DIR / "talker.py")])
@@ -53,9 +52,7 @@ def test_listener_survives_its_talker_dying(router_endpoint: str, children: list
     assert listener.proc.poll() is None
 
 
-def test_node_with_advanced_subscriber_exits_on_sigint(
-    router_endpoint: str, children: list[Child]
-) -> None:
+def test_node_with_advanced_subscriber_exits_on_sigint(router: str, children: list[Child]) -> None:
     node = Child([str(NODES_DIR / "latched_listener.py")])
     children.append(node)
     node.expect("latched_listener ready", timeout=15)
@@ -81,7 +78,7 @@ def _listening_addresses(pid: int) -> list[tuple[str, str]]:
     return found
 
 
-def test_sessions_listen_on_loopback_only(router_endpoint: str) -> None:
+def test_sessions_listen_on_loopback_only(router: str) -> None:
     config = peer_config()
     assert config.get_json("scouting/multicast/enabled") == "false"
     session = open_session(config)

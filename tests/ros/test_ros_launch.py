@@ -6,7 +6,9 @@ import os
 from pathlib import Path
 
 import pytest
-from ros_helpers import Child, demo_package, free_port
+from ros_helpers import Child, demo_package
+
+from launchkit.testing._isolation import free_loopback_port, router_endpoint
 
 
 def test_launch_file_nodes_talk_through_the_hosted_router(
@@ -25,7 +27,7 @@ def test_launch_file_nodes_talk_through_the_hosted_router(
 </launch>
 """
     )
-    endpoint = f"tcp/127.0.0.1:{free_port()}"
+    endpoint = router_endpoint(free_loopback_port())
     launcher = Child(
         ["-m", "launchkit", "run", str(launch), "-a"],
         env={"AMENT_PREFIX_PATH": str(tmp_path / "prefix"), "LAUNCHKIT_ROUTER": endpoint},

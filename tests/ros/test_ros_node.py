@@ -65,7 +65,7 @@ def test_publish_checks_the_type(contexts: Callable[[], Context]) -> None:
 
 
 def test_log_level_from_ros_args(
-    router_endpoint: str, capsys: pytest.CaptureFixture[str], restore_log_levels: None
+    router: str, capsys: pytest.CaptureFixture[str], restore_log_levels: None
 ) -> None:
     context = Context()
     context.init(["prog", "--ros-args", "--log-level", "warn"])

@@ -210,7 +210,7 @@ def test_keep_last_requests_beyond_the_depth_discard_the_oldest_as_rmw_zenoh(
 
 
 def test_a_server_answers_as_soon_as_its_token_is_seen(
-    contexts: Callable[[], Context], router_endpoint: str
+    contexts: Callable[[], Context], router: str
 ) -> None:
     # a client reacting to the SS token at once must find the queryable behind it (the token
     # is declared after the queryable, on the same link to the router)
@@ -221,7 +221,7 @@ def test_a_server_answers_as_soon_as_its_token_is_seen(
     from launchkit.ros.keyexpr import LIVELINESS_PREFIX, parse_token
     from launchkit.ros.session import close_session, open_session, peer_config
 
-    watcher = open_session(peer_config(router_endpoint))
+    watcher = open_session(peer_config(router))
     answered: queue.Queue[tuple[str, int]] = queue.Queue()
     request = SetBool.Request(data=True)
     from launchkit.ros.msgs import serialize

@@ -8,7 +8,7 @@ from pathlib import Path
 
 import pytest
 from launchkit.ros.msgs.std_msgs.msg import String
-from ros_helpers import free_port, spin_until
+from ros_helpers import spin_until
 
 from launchkit.ros import Node
 from launchkit.ros.context import Context
@@ -19,6 +19,7 @@ from launchkit.ros.session import (
     peer_config,
     router_config,
 )
+from launchkit.testing._isolation import free_loopback_port, router_endpoint
 
 
 def test_overrides_split_as_rmw_zenoh_splits_them() -> None:
@@ -85,10 +86,10 @@ def test_an_unusable_config_file_is_a_user_error(
 def test_nodes_follow_an_override_to_another_router(monkeypatch: pytest.MonkeyPatch) -> None:
     # LAUNCHKIT_ROUTER names a port where nothing listens; the override sends both nodes to
     # the router that really runs, as ZENOH_CONFIG_OVERRIDE would send rmw_zenoh nodes
-    real = f"tcp/127.0.0.1:{free_port()}"
+    real = router_endpoint(free_loopback_port())
     router = start_router(real)
     assert router.hosted
-    monkeypatch.setenv("LAUNCHKIT_ROUTER", f"tcp/127.0.0.1:{free_port()}")
+    monkeypatch.setenv("LAUNCHKIT_ROUTER", router_endpoint(free_loopback_port()))
     monkeypatch.setenv("ZENOH_CONFIG_OVERRIDE", f'connect/endpoints=["{real}"]')
     contexts = [Context(), Context()]
     try:

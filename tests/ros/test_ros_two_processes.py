@@ -5,7 +5,7 @@ from __future__ import annotations
 from ros_helpers import NODES_DIR, Child
 
 
-def test_talker_and_listener_processes_talk(router_endpoint: str, children: list[Child]) -> None:
+def test_talker_and_listener_processes_talk(router: str, children: list[Child]) -> None:
     listener = Child([str(NODES_DIR / "listener.py")])
     children.append(listener)
     talker = Child([str(NODES_DIR / "talker.py")])
@@ -16,7 +16,7 @@ def test_talker_and_listener_processes_talk(router_endpoint: str, children: list
     assert listener.stop() == 0
 
 
-def test_remapped_topic_across_processes(router_endpoint: str, children: list[Child]) -> None:
+def test_remapped_topic_across_processes(router: str, children: list[Child]) -> None:
     listener = Child(
         [str(NODES_DIR / "listener.py"), "--ros-args", "-r", "__ns:=/robot", "-r", "chatter:=/news"]
     )
@@ -26,7 +26,7 @@ def test_remapped_topic_across_processes(router_endpoint: str, children: list[Ch
     assert listener.expect("heard: hello", timeout=15)
 
 
-def test_node_exits_promptly_on_sigint(router_endpoint: str, children: list[Child]) -> None:
+def test_node_exits_promptly_on_sigint(router: str, children: list[Child]) -> None:
     talker = Child([str(NODES_DIR / "talker.py")])
     children.append(talker)
     talker.expect("talker ready", timeout=15)

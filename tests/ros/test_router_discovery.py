@@ -14,16 +14,17 @@ from collections.abc import Iterator
 from pathlib import Path
 
 import pytest
-from ros_helpers import NODES_DIR, Child, demo_package, free_port, stderr_line
+from ros_helpers import NODES_DIR, Child, demo_package, stderr_line
 
 from launchkit.ros.router import start_router
 from launchkit.ros.shared_router import SharedRouterState, stop_shared_router
+from launchkit.testing._isolation import free_loopback_port, router_endpoint
 
 
 @pytest.fixture
 def shared(tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> Iterator[str]:
     """An endpoint where no router runs yet, with the shared router allowed to start there."""
-    endpoint = f"tcp/127.0.0.1:{free_port()}"
+    endpoint = router_endpoint(free_loopback_port())
     monkeypatch.setenv("LAUNCHKIT_ROUTER", endpoint)
     monkeypatch.setenv("LAUNCHKIT_ROUTER_AUTOSTART", "1")
     monkeypatch.setenv("XDG_RUNTIME_DIR", str(tmp_path))
@@ -142,7 +143,7 @@ def test_the_shared_router_exits_once_unused(
 def test_a_command_waits_for_the_router_saying_so_once(
     children: list[Child], monkeypatch: pytest.MonkeyPatch
 ) -> None:
-    endpoint = f"tcp/127.0.0.1:{free_port()}"
+    endpoint = router_endpoint(free_loopback_port())
     monkeypatch.setenv("LAUNCHKIT_ROUTER", endpoint)  # autostart is off in the suite
     echo = Child(["-m", "launchkit", "topic", "echo", "/chatter", "--once"])
     children.append(echo)

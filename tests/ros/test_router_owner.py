@@ -14,12 +14,13 @@ from collections.abc import Iterator
 from pathlib import Path
 
 import pytest
-from ros_helpers import demo_package, free_port
+from ros_helpers import demo_package
 
 from launchkit.ros.context import Context
 from launchkit.ros.port_owner import _decode_address, find_listener
 from launchkit.ros.router import start_router
 from launchkit.ros.router_access import ForeignRouterError
+from launchkit.testing._isolation import free_loopback_port
 
 NOBODY = 65534
 
@@ -37,7 +38,7 @@ def foreign_endpoint() -> Iterator[str]:
     """An endpoint on loopback where a process of user ``nobody`` listens."""
     if os.geteuid() != 0:
         pytest.skip("needs root, to start a listener as another user")
-    port = free_port()
+    port = free_loopback_port()
     owner = subprocess.Popen(
         [sys.executable, "-c", _LISTEN_AS_NOBODY.format(uid=NOBODY, port=port)],
         stdin=subprocess.PIPE,
@@ -57,7 +58,7 @@ def test_the_owner_of_a_listening_port_is_found(foreign_endpoint: str) -> None:
     listener = find_listener("127.0.0.1", port)
     assert listener is not None and listener.uid == NOBODY and listener.user == "nobody"
     assert find_listener("localhost", port) == listener
-    assert find_listener("127.0.0.1", free_port()) is None
+    assert find_listener("127.0.0.1", free_loopback_port()) is None
 
 
 def test_kernel_addresses_are_decoded() -> None:

@@ -23,6 +23,7 @@ from ros_helpers import spin_until
 from launchkit.ros import HistoryPolicy, Node, QoSProfile
 from launchkit.ros.context import Context
 from launchkit.ros.executor import WorkQueue
+from tests.support import wait_until
 
 SCALE = float(os.environ.get("LAUNCHKIT_TIMEOUT_SCALE", "1"))
 PATIENCE = 30.0 * SCALE  # a generous bound on waits that end on a condition
@@ -30,14 +31,6 @@ PATIENCE = 30.0 * SCALE  # a generous bound on waits that end on a condition
 
 def _item(tag: Any) -> tuple[Callable[..., Any], tuple[Any, ...]]:
     return (print, (tag,))
-
-
-def _wait_for(predicate: Callable[[], bool], what: str) -> None:
-    deadline = time.monotonic() + PATIENCE
-    while not predicate():
-        if time.monotonic() > deadline:
-            raise AssertionError(f"timed out waiting for {what}")
-        time.sleep(0.001)
 
 
 def test_items_from_many_threads_arrive_once_each_in_each_threads_order() -> None:
@@ -83,14 +76,14 @@ def test_a_blocked_wait_returns_for_an_item_or_a_wake_up() -> None:
     for timeout in (None, PATIENCE):
         waiter = threading.Thread(target=wait, args=(timeout,), daemon=True)
         waiter.start()
-        _wait_for(lambda: queue._waiting == 1, "the waiter to block")
+        wait_until(lambda: queue._waiting == 1, PATIENCE, "the waiter to block", every=0.001)
         queue.put(_item("hello"))
         waiter.join(PATIENCE)
         assert not waiter.is_alive() and results.pop()[1] == ("hello",)
 
         waiter = threading.Thread(target=wait, args=(timeout,), daemon=True)
         waiter.start()
-        _wait_for(lambda: queue._waiting == 1, "the waiter to block")
+        wait_until(lambda: queue._waiting == 1, PATIENCE, "the waiter to block", every=0.001)
         queue.wake()
         waiter.join(PATIENCE)
         assert not waiter.is_alive() and results.pop() is not None  # the wake-up item
@@ -116,7 +109,12 @@ def test_a_stale_wake_up_does_not_end_a_wait_early() -> None:
     results: list[Any] = []
     waiter = threading.Thread(target=lambda: results.append(queue.get(PATIENCE)), daemon=True)
     waiter.start()
-    _wait_for(lambda: queue._waiting == 1 and waiter.is_alive(), "the waiter to block")
+    wait_until(
+        lambda: queue._waiting == 1 and waiter.is_alive(),
+        PATIENCE,
+        "the waiter to block",
+        every=0.001,
+    )
     queue.put(_item("later"))
     waiter.join(PATIENCE)
     assert not waiter.is_alive()

@@ -8,7 +8,6 @@ import os
 import queue
 import re
 import signal
-import socket
 import subprocess
 import threading
 import time
@@ -27,16 +26,9 @@ from launchkit.ros.msgs.sensor_msgs.msg import CameraInfo, Image, JointState, La
 from launchkit.packages import PackageIndex
 from launchkit.ros import Node, QoSProfile, spin_once
 from launchkit.ros.context import Context
-from launchkit.ros.router import start_router
 from launchkit.stock.rotations import yaw_of
 
 SEED_URDF = Path(__file__).resolve().parents[2] / "urdf" / "three_wheeled_robot.urdf"
-
-
-def _free_port() -> int:
-    with socket.socket() as sock:
-        sock.bind(("127.0.0.1", 0))
-        return int(sock.getsockname()[1])
 
 
 class Server:
@@ -96,18 +88,14 @@ class Server:
 
 
 @pytest.fixture
-def network(monkeypatch: pytest.MonkeyPatch) -> Iterator[Context]:
-    """A private router and a ROS context for the probe node."""
-    endpoint = f"tcp/127.0.0.1:{_free_port()}"
-    router = start_router(endpoint)
-    monkeypatch.setenv("LAUNCHKIT_ROUTER", endpoint)
+def network(router: str) -> Iterator[Context]:
+    """A ROS context for the probe node, on the test's private router."""
     context = Context()
     context.init([])
     try:
         yield context
     finally:
         context.shutdown()
-        router.close()
 
 
 @pytest.fixture

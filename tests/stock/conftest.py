@@ -1,4 +1,5 @@
-"""Fixtures for the stock node process tests: a private router, node processes, a probe node.
+"""Fixtures for the stock node process tests: node processes and a probe node on the test's
+private router (the ``router`` fixture).
 
 Every wait has a deadline and says what it waited for; every process started is stopped (its
 whole process group) when the test ends.
@@ -8,7 +9,6 @@ from __future__ import annotations
 
 import os
 import signal
-import socket
 import subprocess
 import sys
 import time
@@ -16,27 +16,6 @@ from collections.abc import Callable, Iterator
 from typing import Any
 
 import pytest
-
-
-def free_port() -> int:
-    """A loopback TCP port nothing listens on right now."""
-    with socket.socket() as sock:
-        sock.bind(("127.0.0.1", 0))
-        return int(sock.getsockname()[1])
-
-
-@pytest.fixture
-def router(monkeypatch: pytest.MonkeyPatch) -> Iterator[str]:
-    """A router on a free loopback port, announced to children through LAUNCHKIT_ROUTER."""
-    from launchkit.ros.router import start_router
-
-    endpoint = f"tcp/127.0.0.1:{free_port()}"
-    handle = start_router(endpoint)
-    monkeypatch.setenv("LAUNCHKIT_ROUTER", endpoint)
-    try:
-        yield endpoint
-    finally:
-        handle.close()
 
 
 class Processes:

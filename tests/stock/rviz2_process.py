@@ -11,7 +11,7 @@ import threading
 from collections.abc import Iterator
 from contextlib import contextmanager
 
-from tests.stock.conftest import free_port
+from launchkit.testing._isolation import free_loopback_port
 
 DEADLINE = 20.0
 
@@ -61,7 +61,7 @@ class Rviz2:
 def running_rviz2(router: str, *args: str) -> Iterator[Rviz2]:
     """rviz2 with ``args`` on a free port, serving once this yields; stopped (its whole process
     group) afterwards."""
-    port = free_port()
+    port = free_loopback_port()
     env = {**os.environ, "LAUNCHKIT_ROUTER": router}
     env.pop("LAUNCHKIT_SUPERVISOR_SOCKET", None)  # print the viewer line itself
     proc = subprocess.Popen(

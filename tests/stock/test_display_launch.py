@@ -6,15 +6,14 @@ from __future__ import annotations
 from typing import Any
 
 from launchkit.ros.msgs import deserialize
-from tests.stock.conftest import free_port
 from tests.stock.foxglove_client import receive_topics
 
 TOPICS = ["/robot_description", "/tf_static", "/joint_states", "/tf"]
 
 
 def test_display_launch_shows_the_robot_in_foxglove(launch: Any) -> None:
-    port = free_port()
-    handle = launch("robot_wheel", "display.launch.xml", env={"LAUNCHKIT_VIEWER_PORT": str(port)})
+    handle = launch("robot_wheel", "display.launch.xml")
+    port = handle.viewer_port
     handle.process("rviz2").wait_output(f"ws://127.0.0.1:{port}", timeout=20)
 
     client = receive_topics(f"ws://127.0.0.1:{port}", list(TOPICS))

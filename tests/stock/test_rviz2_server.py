@@ -24,9 +24,10 @@ from websockets.exceptions import InvalidStatus
 
 import launchkit.ros as ros
 from launchkit.ros.msgs import deserialize, serialize
-from tests.stock.conftest import free_port, latched
+from tests.stock.conftest import latched
 from tests.stock.foxglove_client import FoxgloveClient
 from tests.stock.rviz2_process import DEADLINE, Rviz2, running_rviz2
+from tests.support import hosted_router
 
 CONFIG = Path(__file__).parents[2] / "config" / "robot.rviz"  # robot_wheel's
 ALLOWED = "http://allowed.example"
@@ -36,14 +37,8 @@ PAGE = "launchkit.viewer.v1"
 @pytest.fixture(scope="module")
 def router_endpoint() -> Iterator[str]:
     """A private router for the module."""
-    from launchkit.ros.router import start_router
-
-    endpoint = f"tcp/127.0.0.1:{free_port()}"
-    handle = start_router(endpoint)
-    try:
+    with hosted_router() as endpoint:
         yield endpoint
-    finally:
-        handle.close()
 
 
 @pytest.fixture(scope="module")

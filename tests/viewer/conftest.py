@@ -44,16 +44,20 @@ def chromium_path() -> str | None:
 
 
 @pytest.fixture(scope="module")
-def browser() -> Iterator[Any]:
-    """A headless Chromium for the session (skipped, saying why, only where none is installed).
-    Playwright starts it with a fresh temporary profile of its own."""
+def browser(tmp_path_factory: pytest.TempPathFactory) -> Iterator[Any]:
+    """A headless Chromium for the module (skipped, saying why, only where none is installed).
+    Playwright starts it with a fresh temporary profile of its own; its home folder is a
+    temporary one too (Chromium keeps crash reports and GTK settings below ``HOME``)."""
     executable = chromium_path()
     if executable is None:
         pytest.skip("no chromium installed (.ci/run installs Debian's: apt-get install chromium)")
     from playwright.sync_api import sync_playwright
 
+    env = {**os.environ, "HOME": str(tmp_path_factory.mktemp("chromium-home"))}
     with sync_playwright() as playwright:
-        launched = playwright.chromium.launch(executable_path=executable, args=CHROMIUM_FLAGS)
+        launched = playwright.chromium.launch(
+            executable_path=executable, args=CHROMIUM_FLAGS, env=env
+        )
         try:
             yield launched
         finally:

@@ -7,17 +7,15 @@ which does not exist here, so the page shows the robot in its root frame ``base`
 
 from __future__ import annotations
 
-from collections.abc import Iterator
 from pathlib import Path
 from typing import Any
 
-import pytest
 from launchkit.ros.msgs.geometry_msgs.msg import TransformStamped
 from launchkit.ros.msgs.std_msgs.msg import String
 from launchkit.ros.msgs.tf2_msgs.msg import TFMessage
 
 import launchkit.ros as ros
-from tests.stock.conftest import free_port, latched
+from tests.stock.conftest import latched
 from tests.stock.rviz2_process import running_rviz2
 
 # a 0.4 m cube as ASCII STL (12 triangles)
@@ -34,19 +32,6 @@ def cube_stl() -> str:
             lines += [f"vertex {' '.join(map(str, CORNERS[i]))}" for i in tri]
             lines += ["endloop", "endfacet"]
     return "\n".join([*lines, "endsolid cube", ""])
-
-
-@pytest.fixture
-def router() -> Iterator[str]:
-    """A private router."""
-    from launchkit.ros.router import start_router
-
-    endpoint = f"tcp/127.0.0.1:{free_port()}"
-    handle = start_router(endpoint)
-    try:
-        yield endpoint
-    finally:
-        handle.close()
 
 
 def test_a_mesh_robot_is_fetched_and_drawn(router: str, tmp_path: Path, open_viewer: Any) -> None:

@@ -23,7 +23,6 @@ import pytest
 
 import launchkit.ros as ros
 from launchkit.ros.msgs import deserialize
-from launchkit.testing._isolation import free_loopback_port
 from tests.stock.foxglove_client import receive_topics
 from tests.viewer.conftest import Viewer
 
@@ -34,15 +33,9 @@ LINKS = ["wheel_left_link", "wheel_right_link", "caster", "base", "lidar", "came
 @pytest.fixture(scope="module")
 def robot(launch_module: Any) -> Any:
     """gazebo_and_rviz.launch.xml with the obstacle world and the viewer on a free port."""
-    port = free_loopback_port()
-    handle = launch_module(
-        "robot_wheel",
-        "gazebo_and_rviz.launch.xml",
-        args={"world": "obstacles", "viewer_port": str(port)},
-        ready_timeout=60,
+    return launch_module(
+        "robot_wheel", "gazebo_and_rviz.launch.xml", args={"world": "obstacles"}, ready_timeout=60
     )
-    handle.viewer_port = port
-    return handle
 
 
 def subscribers(handle: Any, topic: str) -> int:

@@ -9,8 +9,6 @@ from __future__ import annotations
 
 from typing import Any
 
-from launchkit.testing._isolation import free_loopback_port
-
 
 def left_wheel(message: Any) -> float:
     """wheel_left_joint's position in a JointState."""
@@ -20,9 +18,8 @@ def left_wheel(message: Any) -> float:
 def test_sliders_move_the_joints_and_the_page_survives_a_restart(
     launch: Any, open_viewer: Any
 ) -> None:
-    port = free_loopback_port()
-    env = {"LAUNCHKIT_VIEWER_PORT": str(port)}
-    first = launch("robot_wheel", "display.launch.xml", env=env)
+    first = launch("robot_wheel", "display.launch.xml")
+    port = first.viewer_port
     first.process("rviz2").wait_output("Foxglove WebSocket on", timeout=60)  # serving
     viewer = open_viewer(f"http://127.0.0.1:{port}/")
     viewer.wait("s.connected && s.robotLinks >= 6", "the robot drawn")
@@ -46,7 +43,7 @@ def test_sliders_move_the_joints_and_the_page_survives_a_restart(
     before = viewer.stats()["tfMessages"]
 
     # ... and when it is started again the page is back by itself, robot and all
-    second = launch("robot_wheel", "display.launch.xml", env=env)
+    second = launch("robot_wheel", "display.launch.xml", env={"LAUNCHKIT_VIEWER_PORT": str(port)})
     viewer.wait(
         f"s.connected && s.connections >= 2 && s.tfMessages > {before} && s.robotLinks >= 6",
         "the page back after the restart, the robot drawn from the new launch's transforms",
