@@ -39,7 +39,10 @@ def test_the_worked_example_builds_installs_runs_and_passes_its_test(tmp_path: P
     site = tmp_path / "site"
     env = {**os.environ, "PIP_NO_INDEX": "1", "PIP_DISABLE_PIP_VERSION_CHECK": "1"}
     pip = [sys.executable, "-m", "pip", "install", "-q", "--no-deps", "--no-build-isolation"]
-    _run([*pip, "--target", str(site), str(tmp_path / "my_talker")], tmp_path, env)
+    # a home of its own: pip asks `rustc --version` for its user agent, and rustup's rustc
+    # writes its settings into a home that has none
+    pip_env = {**env, "HOME": str(tmp_path / "home")}
+    _run([*pip, "--target", str(site), str(tmp_path / "my_talker")], tmp_path, pip_env)
     env["PYTHONPATH"] = os.pathsep.join([str(site), os.environ.get("PYTHONPATH", "")])
     pkg = [sys.executable, "-m", "launchkit", "pkg"]
     listed = _run([*pkg, "executables", "my_talker"], tmp_path, env)

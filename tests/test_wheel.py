@@ -1,6 +1,12 @@
 """The installed wheel carries the robot package's share files: ``$(find-pkg-share
 robot_wheel)`` points inside site-packages and its launch files run from anywhere. It also
-carries the browser viewer's page and its vendored libraries, every import resolving."""
+carries the browser viewer's page and its vendored libraries, every import resolving.
+
+Offline and quick: the wheel is built without build isolation and installed into a fresh venv
+without its dependencies; those (the closure of what the wheel declares, and nothing else) are
+the test environment's installed copies, put on the venv's path with their commands in its
+``bin``, where ``pip install`` would have put them.
+"""
 
 from __future__ import annotations
 
@@ -9,8 +15,15 @@ import os
 import re
 import subprocess
 import sys
+import sysconfig
 import venv
+import zipfile
+from email.parser import HeaderParser
+from importlib.metadata import Distribution, distribution
 from pathlib import Path
+
+from packaging.requirements import Requirement
+from packaging.utils import canonicalize_name
 
 REPO = Path(__file__).resolve().parents[1]
 
@@ -32,13 +45,74 @@ def run(
     return result
 
 
+def declared_requirements(wheel: Path) -> list[str]:
+    """The wheel's ``Requires-Dist`` lines."""
+    with zipfile.ZipFile(wheel) as archive:
+        (name,) = [n for n in archive.namelist() if n.endswith(".dist-info/METADATA")]
+        metadata = HeaderParser().parsestr(archive.read(name).decode())
+    return metadata.get_all("Requires-Dist") or []
+
+
+def dependency_closure(requirements: list[str]) -> list[Distribution]:
+    """The installed distributions ``requirements`` need (without extras), and theirs."""
+    found: dict[str, Distribution] = {}
+    seen: set[tuple[str, frozenset[str]]] = set()
+    pending = [(text, frozenset[str]()) for text in requirements]
+    while pending:
+        text, extras = pending.pop()
+        requirement = Requirement(text)
+        active = extras or frozenset({""})
+        if requirement.marker and not any(
+            requirement.marker.evaluate({"extra": e}) for e in active
+        ):
+            continue
+        key = (canonicalize_name(requirement.name), frozenset(requirement.extras))
+        if key in seen:
+            continue
+        seen.add(key)
+        found[key[0]] = dist = distribution(requirement.name)
+        pending += [(inner, key[1]) for inner in dist.requires or []]
+    return list(found.values())
+
+
+def link_dependencies(wheel: Path, env_dir: Path) -> None:
+    """Give the venv the wheel's dependency closure from the test environment: each
+    distribution's top-level files linked into a folder on the venv's path, and its console
+    scripts written to the venv's ``bin``."""
+    deps = env_dir / "deps"
+    deps.mkdir()
+    for dist in dependency_closure(declared_requirements(wheel)):
+        assert dist.files is not None, f"{dist.metadata['Name']} lists no files"
+        site = Path(str(dist.locate_file("")))
+        for top in {file.parts[0] for file in dist.files} - {"..", "__pycache__"}:
+            if not (deps / top).exists():
+                (deps / top).symlink_to(site / top)
+        for entry in dist.entry_points.select(group="console_scripts"):
+            script = env_dir / "bin" / entry.name
+            head = entry.attr.split(".")[0]
+            script.write_text(
+                f"#!{env_dir / 'bin' / 'python'}\nimport sys\nfrom {entry.module} import {head}\n"
+                f"sys.exit({entry.attr}())\n"
+            )
+            script.chmod(0o755)
+    purelib = sysconfig.get_path("purelib", vars={"base": str(env_dir)})
+    (Path(purelib) / "test-dependencies.pth").write_text(f"{deps}\n")
+
+
 def test_installed_wheel_has_the_robot_share_dir(tmp_path: Path) -> None:
-    run(sys.executable, "-m", "pip", "wheel", "-q", "--no-deps", "-w", tmp_path, REPO, cwd=tmp_path)
+    pip = [sys.executable, "-m", "pip"]
+    # a home of its own: pip asks `rustc --version` for its user agent, and rustup's rustc
+    # writes its settings into a home that has none
+    pip_env = {**os.environ, "HOME": str(tmp_path / "home")}
+    build = ["wheel", "-q", "--no-deps", "--no-build-isolation", "-w", tmp_path, REPO]
+    run(*pip, *build, cwd=tmp_path, env=pip_env)
     (wheel,) = tmp_path.glob("launchkit-*.whl")
     env_dir = tmp_path / "venv"
-    venv.create(env_dir, with_pip=True)
+    venv.create(env_dir, with_pip=False)
     python = env_dir / "bin" / "python"
-    run(python, "-m", "pip", "install", "-q", wheel, cwd=tmp_path)
+    install = ["--python", python, "install", "-q", "--no-deps", "--no-index", wheel]
+    run(*pip, *install, cwd=tmp_path, env=pip_env)
+    link_dependencies(wheel, env_dir)
     elsewhere = tmp_path / "elsewhere"
     elsewhere.mkdir()
     share = Path(
