@@ -102,7 +102,9 @@ def imports_of(name: str) -> set[str]:
     return {target for target in found if target in modules() and target != name}
 
 
+@cache
 def graph() -> dict[str, set[str]]:
+    """Every module's imports of launchkit modules (read once for the tests below)."""
     return {name: imports_of(name) for name in modules()}
 
 
