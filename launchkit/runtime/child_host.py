@@ -10,7 +10,6 @@ from launchkit.description.process_spec import ProcessSpec
 from launchkit.errors import LaunchkitError
 from launchkit.runtime.hooks import SupervisorHooks
 from launchkit.runtime.lifecycle import SendSignal
-from launchkit.runtime.node_host import NodeHost
 from launchkit.runtime.process import SupervisedProcess, check_program
 
 
@@ -28,7 +27,6 @@ class ChildHostMixin:
     shutting_down: bool
     clock: Callable[[], float]
     hooks: SupervisorHooks
-    _node_host: NodeHost
 
     def log(self, level: str, logger: str, message: str) -> None:
         """A launch line (the supervisor's)."""
@@ -46,12 +44,6 @@ class ChildHostMixin:
     def owner_of(self, pid: int) -> SupervisedProcess | None:
         """The running process of the launch whose pid (and so session) is ``pid``."""
         return next((p for p in self.processes if p.alive and p.pid == pid), None)
-
-    def owner_of_forked(self, pid: int) -> SupervisedProcess | None:
-        """The running process of the launch whose trampoline stands for node ``pid``, forked
-        from the launcher's node host (:mod:`launchkit.runtime.node_host`)."""
-        trampoline = self._node_host.trampoline_of(pid)
-        return None if trampoline is None else self.owner_of(trampoline)
 
     def start_child(self, spec: ProcessSpec, owner: SupervisedProcess) -> SupervisedProcess:
         """Start ``spec`` at ``owner``'s request; :class:`RequestError` if it cannot start

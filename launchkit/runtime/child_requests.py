@@ -49,10 +49,6 @@ class ChildHost(Protocol):
     def owner_of(self, pid: int) -> SupervisedProcess | None:
         """The running process of the launch whose session ``pid`` is in."""
 
-    def owner_of_forked(self, pid: int) -> SupervisedProcess | None:
-        """The running process of the launch that stands for node ``pid`` forked from the
-        launcher's node host (the node leads a session of its own)."""
-
     def start_child(self, spec: ProcessSpec, owner: SupervisedProcess) -> SupervisedProcess:
         """Start ``spec`` for ``owner`` now; :class:`RequestError` if it cannot be."""
 
@@ -123,7 +119,7 @@ class ChildRequests:
         try:
             credentials = sock.getsockopt(socket.SOL_SOCKET, socket.SO_PEERCRED, _UCRED.size)
             pid = _UCRED.unpack(credentials)[0]
-            owner = self._host.owner_of(os.getsid(pid)) or self._host.owner_of_forked(pid)
+            owner = self._host.owner_of(os.getsid(pid))
         except OSError:
             owner = None  # it is gone already
         if owner is None:

@@ -125,9 +125,7 @@ def by_machine(local: ProcessFactory, remote: ProcessFactory | None) -> ProcessF
 
 class ManagedProcess:
     """A real process the supervisor owns: its spec, its current incarnation, its lifecycle.
-    ``on_spawn`` is told each new process group (the orphan guard watches them);
-    ``command`` says what to run for the spec's command line (a trampoline for a node forked
-    from the launcher's node host, :mod:`launchkit.runtime.node_host`)."""
+    ``on_spawn`` is told each new process group (the orphan guard watches them)."""
 
     def __init__(
         self,
@@ -135,13 +133,11 @@ class ManagedProcess:
         label: str,
         index: int,
         on_spawn: Callable[[int], None] = lambda _pgid: None,
-        command: Callable[[list[str], ProcessSpec], list[str]] = lambda cmd, _spec: cmd,
     ) -> None:
         self.spec = spec
         self.label = label
         self.index = index
         self.on_spawn = on_spawn
-        self.command = command
         self.lifecycle = lifecycle_of(spec)
         self.popen: subprocess.Popen[bytes] | None = None
         self.pidfd: int | None = None
@@ -177,7 +173,7 @@ class ManagedProcess:
         gate_r, gate_w = os.pipe()
         try:
             self.popen = subprocess.Popen(
-                ["/bin/sh", "-c", _GATE, *self.command(spec.cmd, spec)],
+                ["/bin/sh", "-c", _GATE, *spec.cmd],
                 cwd=spec.cwd or None,
                 env=spec.env,
                 stdin=gate_r,

@@ -36,7 +36,6 @@ from launchkit.runtime.cleanup import LaunchCleanup
 from launchkit.runtime.hooks import SupervisorHooks
 from launchkit.runtime.launch_events import EventRelay
 from launchkit.runtime.lifecycle import Respawn, SendSignal, State
-from launchkit.runtime.node_host import NodeHost
 from launchkit.runtime.output import Output
 from launchkit.runtime.process import (
     ManagedProcess,
@@ -93,12 +92,8 @@ class Supervisor(ChildHostMixin):
         self._io = ProcessIO(self._selector, output, self.hooks, self._on_exit)
         self._report = ProcessReport(output, self.hooks)
         self._requests: ChildRequests | None = None
-        cleanup = self._cleanup
-        self._node_host = NodeHost(self.log, self._folder, cleanup.watch, cleanup.forget)
         local = process_factory or (
-            lambda spec, label, index: ManagedProcess(
-                spec, label, index, self._cleanup.watch, self._node_host.command
-            )
+            lambda spec, label, index: ManagedProcess(spec, label, index, self._cleanup.watch)
         )
         # processes for another host (spec.machine) are run by its agent (launchkit.remote)
         self._new_process = by_machine(local, remote_factory)
@@ -109,7 +104,6 @@ class Supervisor(ChildHostMixin):
         """Start ``spec`` now, or after the first pass when the launch is starting up."""
         if self._pending is not None:
             self._pending.append(spec)
-            self._node_host.expect(spec)  # it imports while the launch is evaluated
         elif self.shutting_down:
             self.log("WARNING", "launch", f"not starting '{spec.name}': shutting down")
         else:
@@ -286,7 +280,6 @@ class Supervisor(ChildHostMixin):
         if self._requests is not None:
             spec.env.update(self._requests.environment())
         spec.env[RUN_TMPDIR] = str(folder)
-        self._node_host.expect(spec)
         index = len(self.processes) + 1
         return self._new_process(spec, f"{spec.name}-{index}", index)
 
@@ -388,7 +381,6 @@ class Supervisor(ChildHostMixin):
         if self._requests is not None:
             self._requests.close()
             self._requests = None
-        self._node_host.close()
         if self.network is not None:
             self.network.close()
         if self._context is not None:

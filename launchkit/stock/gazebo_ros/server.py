@@ -23,17 +23,14 @@ import faulthandler
 import importlib
 import os
 import signal
-import sys
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
 
 from launchkit.stock import _entry
-from launchkit.stock._node_host import preload
 from launchkit.stock.gazebo_ros import messages
 from launchkit.stock.gazebo_ros._shutdown import shutdown_within
 from launchkit.stock.gazebo_ros.camera_node import CameraNodeParams
-from launchkit.stock.gazebo_ros.plugin_host import PluginHost
 from launchkit.stock.gazebo_ros.plugin_processes import PluginProcesses
 from launchkit.stock.gazebo_ros.server_options import ServerOptions, UsageError, parse_server_args
 from launchkit.stock.gazebo_ros.sim.engine import Entity, Simulation, SimulationError
@@ -65,7 +62,7 @@ class _Spawned:
 class SimServer:
     """The node: owns the :class:`Simulation` from one thread and paces it."""
 
-    def __init__(self, ros: Any, options: ServerOptions, host: PluginHost | None = None) -> None:
+    def __init__(self, ros: Any, options: ServerOptions) -> None:
         self.ros = ros
         self.node = ros.Node("gazebo")
         self.logger = self.node.get_logger()
@@ -101,7 +98,7 @@ class SimServer:
         self.spawned: dict[str, _Spawned] = {}
         #: Topics where the implicit joint state streams pause: another node publishes there.
         self.yielded_topics: set[str] = set()
-        self.children = PluginProcesses(self.logger.info, host)
+        self.children = PluginProcesses(self.logger.info)
         self.sensor_qos = ros.QoSProfile(depth=5, reliability=ros.ReliabilityPolicy.RELIABLE)
         self.clock_pub = None
         if options.ros_init:
@@ -328,7 +325,6 @@ def main(argv: list[str]) -> int:
         raise UsageError(str(exc)) from None
     ros = importlib.import_module("launchkit.ros")
     server: SimServer | None = None
-    host: PluginHost | None = None
     stop_requested = False
 
     def _stop(_signum: int, _frame: object) -> None:
@@ -347,12 +343,8 @@ def main(argv: list[str]) -> int:
     signal.signal(signal.SIGTERM, _stop)
     signal.signal(signal.SIGINT, _stop)
     try:
-        # The plugin host is forked before ros.init: before any Zenoh session (and its
-        # threads) exists in this process.
-        preload()
-        host = PluginHost.fork(lambda text: print(f"[gazebo] {text}", file=sys.stderr))
         ros.init(args=argv)
-        server = SimServer(ros, options, host)
+        server = SimServer(ros, options)
         signal.signal(signal.SIGTERM, _stop)
         signal.signal(signal.SIGINT, _stop)
         server.running = not stop_requested
@@ -362,8 +354,6 @@ def main(argv: list[str]) -> int:
     finally:
         if server is not None:
             server.close()
-        if host is not None:
-            host.close()
         shutdown_within(ros, 2.0, 0)
     return 0
 
