@@ -30,7 +30,6 @@ from typing import Any, Protocol
 
 from launchkit.description.process_spec import OUTPUT_MODES, ProcessSpec
 from launchkit.envvars import SUPERVISOR_SOCKET
-from launchkit.runtime.child_host import RequestError
 from launchkit.runtime.lifecycle import State
 from launchkit.runtime.process import SupervisedProcess
 from launchkit.runtime.supervisor_client import MAX_PACKET
@@ -41,6 +40,10 @@ _UCRED = struct.Struct("3i")  # pid, uid, gid
 MAX_CONNECTIONS = 256
 #: Refused connections kept until their peer's request arrives (so it can read why).
 MAX_REFUSED = 16
+
+
+class RequestError(Exception):
+    """A request that cannot be served; its message is the error reply."""
 
 
 class ChildHost(Protocol):

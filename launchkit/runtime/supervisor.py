@@ -31,7 +31,7 @@ from launchkit.description.events import ExecutionComplete
 from launchkit.description.process_spec import ProcessSpec
 from launchkit.envvars import RUN_TMPDIR
 from launchkit.errors import LaunchkitError
-from launchkit.runtime.child_host import ChildHostMixin
+from launchkit.runtime.child_requests import ChildRequests, RequestError
 from launchkit.runtime.cleanup import LaunchCleanup
 from launchkit.runtime.hooks import SupervisorHooks
 from launchkit.runtime.launch_events import EventRelay
@@ -42,6 +42,7 @@ from launchkit.runtime.process import (
     ProcessFactory,
     SupervisedProcess,
     by_machine,
+    check_program,
     check_programs,
 )
 from launchkit.runtime.process_io import POLL_INTERVAL, ProcessIO
@@ -57,13 +58,12 @@ from launchkit.runtime.timers import TimerQueue
 if TYPE_CHECKING:
     from launchkit.description.launch_context import DelayedActions, LaunchContext, Snapshot
     from launchkit.description.launch_description import LaunchDescription
-    from launchkit.runtime.child_requests import ChildRequests
     from launchkit.runtime.network import NodeNetwork
 
 
-class Supervisor(ChildHostMixin):
-    """Runs a launch description and supervises what it starts (the :class:`Runner`; the
-    processes started on request are in :class:`ChildHostMixin`)."""
+class Supervisor:
+    """Runs a launch description and supervises what it starts (the :class:`Runner`), and
+    the processes its processes ask for (the ``ChildHost`` of the child-request socket)."""
 
     def __init__(
         self,
@@ -165,8 +165,6 @@ class Supervisor(ChildHostMixin):
         return Path(folder)
 
     def _open_requests(self, folder: str) -> None:
-        from launchkit.runtime.child_requests import ChildRequests  # json, socket, struct
-
         try:
             self._requests = ChildRequests(self, self._selector, folder)
         except OSError as error:
@@ -321,6 +319,39 @@ class Supervisor(ChildHostMixin):
             )
         else:
             self._report.respawn(process, outcome)
+
+    # -- processes started at a process's request (the child-request socket's ChildHost) -----
+
+    def owner_of(self, pid: int) -> SupervisedProcess | None:
+        """The running process of the launch whose pid (and so session) is ``pid``."""
+        return next((p for p in self.processes if p.alive and p.pid == pid), None)
+
+    def start_child(self, spec: ProcessSpec, owner: SupervisedProcess) -> SupervisedProcess:
+        """Start ``spec`` at ``owner``'s request; :class:`RequestError` if it cannot start
+        (a refused request never stops the launch)."""
+        if self.shutting_down:
+            raise RequestError("the launch is shutting down")
+        try:
+            check_program(spec)
+        except LaunchkitError as error:
+            raise RequestError(error.message) from None
+        process = self._managed(spec)
+        try:
+            process.spawn()
+        except OSError as error:
+            raise RequestError(f"could not start '{spec.cmd[0]}': {error.strerror}") from None
+        process.lifecycle.started(self.clock())
+        self.processes.append(process)
+        self.log("INFO", process.label, f"started at the request of {owner.label}")
+        self._watch(process)
+        return process
+
+    def stop_child(self, process: SupervisedProcess) -> None:
+        """Stop a process started on request, as a shutdown would, and never respawn it."""
+        effect = process.lifecycle.stop(self.clock(), retire=True)
+        if effect is not None:
+            self.hooks.process_stopping(process)
+            self._send(process, effect)
 
     # -- shutdown ----------------------------------------------------------------------------
 
