@@ -14,6 +14,7 @@ from __future__ import annotations
 
 import errno
 import os
+import pty
 import shutil
 import signal
 import subprocess
@@ -163,8 +164,6 @@ class ManagedProcess:
         Streams of an earlier incarnation that a grandchild still holds stay until their end."""
         spec = self.spec
         if spec.emulate_tty:
-            import pty  # with tty and termios: only for emulate_tty
-
             out_r, out_w = pty.openpty()
             err_r, err_w = None, out_w
         else:

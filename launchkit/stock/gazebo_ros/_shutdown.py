@@ -5,10 +5,11 @@ from __future__ import annotations
 import os
 import sys
 import threading
-from typing import Any
+
+import launchkit.ros as ros
 
 
-def shutdown_within(ros: Any, seconds: float, code: int) -> None:
+def shutdown_within(seconds: float, code: int) -> None:
     """``ros.shutdown()``, but exit with ``code`` anyway if it has not returned in ``seconds``.
 
     A node process must never outlive its supervisor's stop request because closing the

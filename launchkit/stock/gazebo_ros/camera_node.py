@@ -19,10 +19,10 @@ if it cannot load).
 
 from __future__ import annotations
 
-import importlib
 from dataclasses import asdict, dataclass
 from typing import Any
 
+import launchkit.ros as ros
 from launchkit.errors import UserError
 from launchkit.stock import _entry
 from launchkit.stock.gazebo_ros import messages
@@ -59,8 +59,7 @@ class CameraNodeParams:
 class CameraNode:
     """Mirrors one entity from the server's state and publishes its camera's frames."""
 
-    def __init__(self, ros: Any) -> None:
-        self.ros = ros
+    def __init__(self) -> None:
         self.node = ros.Node("gazebo_ros_camera")
         node, self.logger = self.node, self.node.get_logger()
         entity = str(node.declare_parameter("entity", "").value)
@@ -163,9 +162,9 @@ class CameraNode:
 
     def _drain(self) -> None:
         """Run the callbacks already queued, so that the newest state is known."""
-        while self.ros.ok():
+        while ros.ok():
             self.received = False
-            self.ros.spin_once(self.node, timeout_sec=0.0)
+            ros.spin_once(self.node, timeout_sec=0.0)
             if not self.received:
                 return
 
@@ -187,7 +186,7 @@ class CameraNode:
         )
         frame = camera.render()
         self.rendered = key
-        if not self.ros.ok():
+        if not ros.ok():
             return False
         self.image_pub.publish(messages.image(self.config, now, frame))
         self.info_pub.publish(messages.camera_info(self.config, now))
@@ -195,11 +194,11 @@ class CameraNode:
 
     def run(self) -> None:
         """Follow, render and publish until shutdown."""
-        while self.ros.ok():
+        while ros.ok():
             if not self._watch():
-                self.ros.spin_once(self.node, timeout_sec=IDLE_POLL)
+                ros.spin_once(self.node, timeout_sec=IDLE_POLL)
                 continue
-            self.ros.spin_once(self.node, timeout_sec=0.05)
+            ros.spin_once(self.node, timeout_sec=0.05)
             self._drain()
             self.render_if_due()
 
@@ -218,16 +217,15 @@ def _camera_config(sensors: tuple[SensorSpec, ...], name: str) -> CameraConfig:
 
 def main(argv: list[str]) -> int:
     """Run the camera node until stopped; ``argv`` is the whole command line."""
-    ros = importlib.import_module("launchkit.ros")
     ros.init(args=argv)
     camera: CameraNode | None = None
     try:
-        camera = CameraNode(ros)
+        camera = CameraNode()
         camera.run()
     finally:
         if camera is not None:
             camera.close()
-        shutdown_within(ros, 2.0, 0)
+        shutdown_within(2.0, 0)
     return 0
 
 

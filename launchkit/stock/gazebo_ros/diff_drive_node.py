@@ -9,9 +9,9 @@ alone: ``launchkit exec gazebo_ros diff_drive --ros-args -p entity:=NAME -p left
 
 from __future__ import annotations
 
-import importlib
 from typing import Any
 
+import launchkit.ros as ros
 from launchkit.errors import UserError
 from launchkit.stock import _entry
 from launchkit.stock.gazebo_ros import messages
@@ -29,7 +29,7 @@ from launchkit.stock.gazebo_ros.state_pairs import StatePairs, nanoseconds
 class DiffDriveNode:
     """Wires a :class:`DiffDriveController` to the simulator's topics."""
 
-    def __init__(self, ros: Any) -> None:
+    def __init__(self) -> None:
         self.node = ros.Node("gazebo_ros_diff_drive")
         node = self.node
         entity = str(node.declare_parameter("entity", "").value)
@@ -147,15 +147,14 @@ class DiffDriveNode:
 
 def main(argv: list[str]) -> int:
     """Run the diff drive node until stopped; ``argv`` is the whole command line."""
-    ros = importlib.import_module("launchkit.ros")
     ros.init(args=argv)
     try:
-        node = DiffDriveNode(ros)
+        node = DiffDriveNode()
         ros.spin(node.node)
     except DiffDriveConfigError as exc:
         raise UserError(str(exc)) from None
     finally:
-        shutdown_within(ros, 2.0, 0)
+        shutdown_within(2.0, 0)
     return 0
 
 

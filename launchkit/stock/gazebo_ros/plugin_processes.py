@@ -109,7 +109,7 @@ class Child:
 class PluginProcesses:
     """The children of the server, keyed by entity."""
 
-    log: Callable[[str], None]
+    log: Callable[[str], object]
     children: dict[str, list[Child]] = field(default_factory=dict)
     _tmp: tempfile.TemporaryDirectory[str] = field(default_factory=_plugin_folder)
     _launcher: SupervisorClient | None = None

@@ -20,19 +20,20 @@ for a model without a joint state plugin; 0 for none, as in Gazebo; see
 from __future__ import annotations
 
 import faulthandler
-import importlib
 import os
 import signal
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
 
+import launchkit.ros as ros
 from launchkit.stock import _entry
 from launchkit.stock.gazebo_ros import messages
 from launchkit.stock.gazebo_ros._shutdown import shutdown_within
 from launchkit.stock.gazebo_ros.camera_node import CameraNodeParams
 from launchkit.stock.gazebo_ros.plugin_processes import PluginProcesses
 from launchkit.stock.gazebo_ros.server_options import ServerOptions, UsageError, parse_server_args
+from launchkit.stock.gazebo_ros.sim.diff_drive import Odometry
 from launchkit.stock.gazebo_ros.sim.engine import Entity, Simulation, SimulationError
 from launchkit.stock.gazebo_ros.sim.joint_states import JointStateOutput
 from launchkit.stock.gazebo_ros.sim.model import ModelError
@@ -62,8 +63,7 @@ class _Spawned:
 class SimServer:
     """The node: owns the :class:`Simulation` from one thread and paces it."""
 
-    def __init__(self, ros: Any, options: ServerOptions) -> None:
-        self.ros = ros
+    def __init__(self, options: ServerOptions) -> None:
         self.node = ros.Node("gazebo")
         self.logger = self.node.get_logger()
         p = self.node
@@ -279,16 +279,16 @@ class SimServer:
     def run(self) -> None:
         """Step, publish and pace until shutdown."""
         steps_between_spins = 8
-        while self.running and self.ros.ok():
+        while self.running and ros.ok():
             # Ground truth and joint states go out before the step so that a subscriber sees a
             # consistent state at the stamp.
             self._publish(self.sim.time)
             self.sim.step()
             wait = self.pacer.wait_needed(self.sim.time)
             if wait > 0:
-                self.ros.spin_once(self.node, timeout_sec=min(wait, 0.05))
+                ros.spin_once(self.node, timeout_sec=min(wait, 0.05))
             elif self.sim.steps % steps_between_spins == 0:
-                self.ros.spin_once(self.node, timeout_sec=0.0)
+                ros.spin_once(self.node, timeout_sec=0.0)
             if self.sim.steps % 240 == 0:
                 self.children.supervise()
                 self._yield_joint_state_topics()
@@ -300,8 +300,6 @@ class SimServer:
 
 
 def _ground_truth(now: float, root: str, base: Any) -> Any:
-    from launchkit.stock.gazebo_ros.sim.diff_drive import Odometry
-
     zeros = tuple(0.0 for _ in range(36))
     return Odometry(
         stamp=now,
@@ -323,7 +321,6 @@ def main(argv: list[str]) -> int:
         resolve_world(options.world)
     except ModelError as exc:
         raise UsageError(str(exc)) from None
-    ros = importlib.import_module("launchkit.ros")
     server: SimServer | None = None
     stop_requested = False
 
@@ -344,7 +341,7 @@ def main(argv: list[str]) -> int:
     signal.signal(signal.SIGINT, _stop)
     try:
         ros.init(args=argv)
-        server = SimServer(ros, options)
+        server = SimServer(options)
         signal.signal(signal.SIGTERM, _stop)
         signal.signal(signal.SIGINT, _stop)
         server.running = not stop_requested
@@ -354,7 +351,7 @@ def main(argv: list[str]) -> int:
     finally:
         if server is not None:
             server.close()
-        shutdown_within(ros, 2.0, 0)
+        shutdown_within(2.0, 0)
     return 0
 
 

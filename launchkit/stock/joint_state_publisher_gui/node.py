@@ -12,6 +12,7 @@ from __future__ import annotations
 import sys
 
 import launchkit.ros as ros
+from launchkit.ros.msgs.sensor_msgs.msg import JointState
 from launchkit.stock import _entry
 from launchkit.stock.joint_state_publisher.node import JointStatePublisher
 
@@ -21,8 +22,6 @@ SLIDER_TOPIC = "~/slider_positions"
 
 def main(argv: list[str]) -> int:
     """Run joint_state_publisher under this node's name, taking slider positions too."""
-    from launchkit.ros.msgs.sensor_msgs.msg import JointState
-
     ros.init(argv)
     node = ros.Node(
         "joint_state_publisher_gui", automatically_declare_parameters_from_overrides=True

@@ -14,6 +14,8 @@ from typing import Any
 
 import launchkit.ros as ros
 from launchkit.errors import UserError
+from launchkit.ros.msgs.geometry_msgs.msg import Twist, TwistStamped, Vector3
+from launchkit.ros.msgs.std_msgs.msg import Header
 from launchkit.stock import _entry
 from launchkit.stock.teleop_twist_keyboard.keys import Teleop, Velocity
 from launchkit.stock.teleop_twist_keyboard.terminal import KeyReader
@@ -82,9 +84,6 @@ def _say(lines: list[str]) -> None:
 
 def _publisher(node: ros.Node, stamped: bool, frame_id: str) -> Any:
     """A function publishing a :class:`Velocity` as Twist or TwistStamped on ``cmd_vel``."""
-    from launchkit.ros.msgs.geometry_msgs.msg import Twist, TwistStamped, Vector3
-    from launchkit.ros.msgs.std_msgs.msg import Header
-
     pub = node.create_publisher(TwistStamped if stamped else Twist, "cmd_vel", 10)
 
     def publish(velocity: Velocity) -> None:
