@@ -26,13 +26,12 @@ import launchkit.ros as ros
 from launchkit.errors import UserError
 from launchkit.stock import _entry
 from launchkit.stock.gazebo_ros import messages
-from launchkit.stock.gazebo_ros._shutdown import shutdown_within
 from launchkit.stock.gazebo_ros.sim.engine import Simulation, SimulationError
 from launchkit.stock.gazebo_ros.sim.model import ModelError, SensorSpec, parse_model
 from launchkit.stock.gazebo_ros.sim.quiet import silence_c_stdout
 from launchkit.stock.gazebo_ros.sim.sensors import Camera, CameraConfig, RateGate
 from launchkit.stock.gazebo_ros.sim.world import load_world, resolve_world
-from launchkit.stock.gazebo_ros.state_pairs import StatePairs, nanoseconds
+from launchkit.stock.gazebo_ros.state_pairs import StatePairs, nanoseconds, subscribe_halves
 
 #: Wall seconds between looks at the image topic's subscriber count while nobody watches.
 IDLE_POLL = 0.1
@@ -59,8 +58,8 @@ class CameraNodeParams:
 class CameraNode:
     """Mirrors one entity from the server's state and publishes its camera's frames."""
 
-    def __init__(self) -> None:
-        self.node = ros.Node("gazebo_ros_camera")
+    def __init__(self, node: ros.Node) -> None:
+        self.node = node
         node, self.logger = self.node, self.node.get_logger()
         entity = str(node.declare_parameter("entity", "").value)
         model = str(node.declare_parameter("model", "").value)
@@ -118,21 +117,9 @@ class CameraNode:
         """Whether the image has subscribers; follows the server's state only while it does."""
         watched = bool(self.image_pub.get_subscription_count() > 0)
         if watched and not self.state_subs:
-            node, name = self.node, self.entity_name
-            self.state_subs = [
-                node.create_subscription(
-                    messages.message_class("nav_msgs", "Odometry"),
-                    messages.GROUND_TRUTH_TOPIC.format(entity=name),
-                    self._truth,
-                    10,
-                ),
-                node.create_subscription(
-                    messages.message_class("sensor_msgs", "JointState"),
-                    messages.STATE_TOPIC.format(entity=name),
-                    self._joints,
-                    10,
-                ),
-            ]
+            self.state_subs = subscribe_halves(
+                self.node, self.entity_name, self._truth, self._joints
+            )
             self._renderer()
             self.logger.info("image subscribed: rendering")
         elif not watched and self.state_subs:
@@ -217,15 +204,12 @@ def _camera_config(sensors: tuple[SensorSpec, ...], name: str) -> CameraConfig:
 
 def main(argv: list[str]) -> int:
     """Run the camera node until stopped; ``argv`` is the whole command line."""
-    ros.init(args=argv)
-    camera: CameraNode | None = None
-    try:
-        camera = CameraNode()
-        camera.run()
-    finally:
-        if camera is not None:
+    with _entry.ros_node(argv, "gazebo_ros_camera") as node:
+        camera = CameraNode(node)
+        try:
+            camera.run()
+        finally:
             camera.close()
-        shutdown_within(2.0, 0)
     return 0
 
 

@@ -29,7 +29,6 @@ from typing import Any
 import launchkit.ros as ros
 from launchkit.stock import _entry
 from launchkit.stock.gazebo_ros import messages
-from launchkit.stock.gazebo_ros._shutdown import shutdown_within
 from launchkit.stock.gazebo_ros.camera_node import CameraNodeParams
 from launchkit.stock.gazebo_ros.plugin_processes import PluginProcesses
 from launchkit.stock.gazebo_ros.server_options import ServerOptions, UsageError, parse_server_args
@@ -63,8 +62,8 @@ class _Spawned:
 class SimServer:
     """The node: owns the :class:`Simulation` from one thread and paces it."""
 
-    def __init__(self, options: ServerOptions) -> None:
-        self.node = ros.Node("gazebo")
+    def __init__(self, node: ros.Node, options: ServerOptions) -> None:
+        self.node = node
         self.logger = self.node.get_logger()
         p = self.node
         rtf = float(p.declare_parameter("real_time_factor", 1.0).value)
@@ -335,23 +334,22 @@ def main(argv: list[str]) -> int:
 
     # `kill -USR1 PID` prints every thread's stack: what a stuck server is doing.
     faulthandler.register(signal.SIGUSR1, all_threads=True)
-    # Installed before the (slow) imports and world load, so an early Ctrl-C still ends cleanly,
-    # and again after it: creating the node installs the ROS layer's handlers over these.
+    # Installed before the world load, so an early Ctrl-C still ends cleanly, and again after
+    # it: initialising the ROS layer installs its handlers over these.
     signal.signal(signal.SIGTERM, _stop)
     signal.signal(signal.SIGINT, _stop)
     try:
-        ros.init(args=argv)
-        server = SimServer(options)
-        signal.signal(signal.SIGTERM, _stop)
-        signal.signal(signal.SIGINT, _stop)
-        server.running = not stop_requested
-        server.run()
+        with _entry.ros_node(argv, "gazebo") as node:
+            server = SimServer(node, options)
+            signal.signal(signal.SIGTERM, _stop)
+            signal.signal(signal.SIGINT, _stop)
+            server.running = not stop_requested
+            try:
+                server.run()
+            finally:
+                server.close()
     except ModelError as exc:
         raise UsageError(str(exc)) from None
-    finally:
-        if server is not None:
-            server.close()
-        shutdown_within(2.0, 0)
     return 0
 
 

@@ -85,9 +85,9 @@ def _call(client: Any, request: Any, deadline: float) -> Any:
         time.sleep(0.1)
 
 
-def spawn(args: argparse.Namespace) -> str:
-    """Do the spawn; the service's status message on success, :class:`SpawnError` otherwise."""
-    node = ros.Node("spawn_entity")
+def spawn(node: ros.Node, args: argparse.Namespace) -> str:
+    """Do the spawn from ``node``; the service's status message on success,
+    :class:`SpawnError` otherwise."""
     if args.file is not None:
         try:
             xml = Path(args.file).read_text()
@@ -129,11 +129,8 @@ def spawn(args: argparse.Namespace) -> str:
 def main(argv: list[str]) -> int:
     """Spawn the entity; ``argv`` is the whole command line."""
     args = parse_args(argv[1:])
-    ros.init(args=argv)
-    try:
-        message = spawn(args)
-    finally:
-        ros.shutdown()
+    with _entry.ros_node(argv, "spawn_entity") as node:
+        message = spawn(node, args)
     print(f"[spawn_entity] {message}", flush=True)
     return 0
 

@@ -96,15 +96,9 @@ class JointStatePublisher:
 
 def main(argv: list[str], name: str = "joint_state_publisher") -> int:
     """Run the node called ``name`` until shutdown (Ctrl-C or SIGTERM)."""
-    ros.init(argv)
-    node = ros.Node(name, automatically_declare_parameters_from_overrides=True)
-    try:
-        JointStatePublisher(node)
-        ros.spin(node)
-    finally:
-        node.destroy_node()
-        ros.shutdown()
-    return 0
+    return _entry.spin(
+        argv, name, JointStatePublisher, automatically_declare_parameters_from_overrides=True
+    )
 
 
 if __name__ == "__main__":

@@ -101,15 +101,7 @@ class RobotStatePublisher:
 
 def main(argv: list[str]) -> int:
     """Run the node until shutdown (Ctrl-C or SIGTERM)."""
-    ros.init(argv)
-    node = ros.Node("robot_state_publisher")
-    try:
-        RobotStatePublisher(node)
-        ros.spin(node)
-    finally:
-        node.destroy_node()
-        ros.shutdown()
-    return 0
+    return _entry.spin(argv, "robot_state_publisher", RobotStatePublisher)
 
 
 if __name__ == "__main__":

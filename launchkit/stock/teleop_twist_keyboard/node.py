@@ -27,10 +27,8 @@ POLL_SEC = 0.1
 def main(argv: list[str]) -> int:
     """Run the node until Ctrl-C or a shutdown; the terminal is always restored."""
     reader = KeyReader(sys.stdin.fileno())  # fails before any ROS set-up when not a terminal
-    ros.init(argv)
-    stop = _stop_on_signals()
-    node = ros.Node("teleop_twist_keyboard")
-    try:
+    with _entry.ros_node(argv, "teleop_twist_keyboard") as node:
+        stop = _stop_on_signals()
         stamped = bool(node.declare_parameter("stamped", False).value)
         frame_id = str(node.declare_parameter("frame_id", "").value)
         if frame_id and not stamped:
@@ -59,9 +57,6 @@ def main(argv: list[str]) -> int:
                         break
             finally:
                 publish(Velocity())
-    finally:
-        node.destroy_node()
-        ros.shutdown()
     return 0
 
 
