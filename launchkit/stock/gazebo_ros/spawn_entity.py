@@ -104,6 +104,8 @@ def spawn(node: ros.Node, args: argparse.Namespace) -> str:
     client = node.create_client(srv, "/spawn_entity")
     node.get_logger().info("Waiting for service /spawn_entity")
     if not client.wait_for_service(timeout_sec=args.spawn_service_timeout):
+        if not ros.ok():
+            raise KeyboardInterrupt  # stopped while it waited (Ctrl-C, SIGTERM): a clean end
         raise SpawnError(
             f"service /spawn_entity not available within {args.spawn_service_timeout:g} s "
             "(expected a running gzserver with libgazebo_ros_factory.so)"
