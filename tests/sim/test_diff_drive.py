@@ -14,7 +14,7 @@ from launchkit.stock.gazebo_ros.sim.diff_drive import (
     DiffDriveParams,
     wheel_geometry_warnings,
 )
-from launchkit.stock.rotations import quaternion_from_yaw, yaw_of
+from launchkit.rotations import quaternion_from_yaw, yaw_of
 
 SEED_TAGS = {
     "odometry_frame": "odom",

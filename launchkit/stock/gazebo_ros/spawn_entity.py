@@ -21,7 +21,7 @@ from typing import Any
 from launchkit.errors import UserError
 from launchkit.stock import _entry
 from launchkit.stock.gazebo_ros import messages
-from launchkit.stock.rotations import rpy_to_quaternion
+from launchkit.rotations import rpy_to_quaternion
 
 
 class SpawnError(UserError):
