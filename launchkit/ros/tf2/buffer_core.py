@@ -104,12 +104,10 @@ class BufferCore:
             return 1, ""
         at = time_ns(time)
         with self._lock:
-            target, message = self._frames.check("canTransform argument target_frame", target_frame)
-            if not target:
+            numbers, message = self._check(target_frame=target_frame, source_frame=source_frame)
+            if not numbers:
                 return 0, message
-            source, message = self._frames.check("canTransform argument source_frame", source_frame)
-            if not source:
-                return 0, message
+            target, source = numbers
             return self._can(target, source, at)
 
     def can_transform_full_core(
@@ -123,19 +121,25 @@ class BufferCore:
         """As :meth:`can_transform_core` for :meth:`lookup_transform_full_core`'s question."""
         target_at, source_at = time_ns(target_time), time_ns(source_time)
         with self._lock:
-            numbers = []
-            for argument, frame in (
-                ("target_frame", target_frame),
-                ("source_frame", source_frame),
-                ("fixed_frame", fixed_frame),
-            ):
-                number, message = self._frames.check(f"canTransform argument {argument}", frame)
-                if not number:
-                    return 0, message
-                numbers.append(number)
+            numbers, message = self._check(
+                target_frame=target_frame, source_frame=source_frame, fixed_frame=fixed_frame
+            )
+            if not numbers:
+                return 0, message
             target, source, fixed = numbers
             result = self._can(target, fixed, target_at)
             return result if not result[0] else self._can(fixed, source, source_at)
+
+    def _check(self, **frames: str) -> tuple[list[int], str]:
+        """The numbers of the frames given by argument name, or ``([], why)`` for the first
+        that is no usable frame (tf2's ``canTransform`` messages)."""
+        numbers = []
+        for argument, frame in frames.items():
+            number, message = self._frames.check(f"canTransform argument {argument}", frame)
+            if not number:
+                return [], message
+            numbers.append(number)
+        return numbers, ""
 
     def _can(self, target: int, source: int, time: int) -> tuple[int, str]:
         if target == source:

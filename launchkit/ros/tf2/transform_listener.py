@@ -8,6 +8,7 @@ of the listener's own instead.
 
 from __future__ import annotations
 
+import importlib
 import threading
 from typing import Any
 
@@ -27,6 +28,17 @@ _AUTHORITY = "default_authority"
 _SPIN_PERIOD = 0.1  # how often the dedicated thread looks whether it should stop (s)
 
 
+def _reentrant_group() -> Any:
+    """A reentrant callback group, as tf2_ros gives its subscriptions: a lookup waiting in
+    another callback of a multi-threaded executor still gets the data. None (the node's default
+    group) while ``launchkit.ros`` has no ``callback_groups`` module."""
+    try:
+        groups = importlib.import_module("launchkit.ros.callback_groups")
+    except ImportError:
+        return None
+    return groups.ReentrantCallbackGroup()
+
+
 class TransformListener:
     """Subscribes ``node`` to ``/tf`` and ``/tf_static`` and adds what arrives to ``buffer``."""
 
@@ -42,14 +54,20 @@ class TransformListener:
         self.buffer = buffer
         self.node = node
         message = get_message("tf2_msgs/msg/TFMessage")
+        self.group = _reentrant_group()
         self.tf_sub = node.create_subscription(
-            message, "/tf", self.callback, DYNAMIC_LISTENER_QOS if qos is None else qos
+            message,
+            "/tf",
+            self.callback,
+            DYNAMIC_LISTENER_QOS if qos is None else qos,
+            callback_group=self.group,
         )
         self.tf_static_sub = node.create_subscription(
             message,
             "/tf_static",
             self.static_callback,
             STATIC_LISTENER_QOS if static_qos is None else static_qos,
+            callback_group=self.group,
         )
         if spin_thread:
             self.executor = SingleThreadedExecutor(context=node.context)
