@@ -27,7 +27,7 @@ WAIT = Duration(seconds=60)
 
 
 @pytest.fixture(scope="module")
-def robot(launch_module):  # type: ignore[no-untyped-def]
+def robot(launch_module: Any) -> Any:
     """The robot launch, without the viewer."""
     handle = launch_module(
         "robot_wheel", "gazebo_and_rviz.launch.xml", args={"start_rviz": "false"}, ready_timeout=60

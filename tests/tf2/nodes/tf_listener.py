@@ -4,6 +4,7 @@ then lookups from the main thread, each result printed on one line for the test 
 from __future__ import annotations
 
 import time
+from typing import Any
 
 from tf2_ros import Buffer, LookupException, TransformListener
 
@@ -11,10 +12,10 @@ import launchkit.ros as rclpy
 from launchkit.ros.clock import Duration, Time
 
 
-def line(name: str, transform: object) -> str:
-    stamp = transform.header.stamp  # type: ignore[attr-defined]
-    t = transform.transform.translation  # type: ignore[attr-defined]
-    r = transform.transform.rotation  # type: ignore[attr-defined]
+def line(name: str, transform: Any) -> str:
+    stamp = transform.header.stamp
+    t = transform.transform.translation
+    r = transform.transform.rotation
     return (
         f"{name} {stamp.sec * 1_000_000_000 + stamp.nanosec} "
         f"{t.x!r} {t.y!r} {t.z!r} {r.z!r} {r.w!r}"
