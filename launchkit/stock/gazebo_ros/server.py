@@ -28,6 +28,7 @@ from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
 
+from launchkit.rotations import quaternion_to_rpy
 from launchkit.stock import _entry
 from launchkit.stock._node_host import preload
 from launchkit.stock.gazebo_ros import messages
@@ -43,7 +44,6 @@ from launchkit.stock.gazebo_ros.sim.pacing import Pacer
 from launchkit.stock.gazebo_ros.sim.plugins import EntityPlugins, PluginDefaults, load_plugins
 from launchkit.stock.gazebo_ros.sim.sensors import RateGate
 from launchkit.stock.gazebo_ros.sim.world import load_world, resolve_world
-from launchkit.stock.rotations import quaternion_to_rpy
 
 #: Seconds a stop request may take before the server prints its stacks and exits hard (under
 #: ROS's default SIGINT -> SIGKILL escalation of 10 s).

@@ -19,9 +19,9 @@ from pathlib import Path
 from typing import Any
 
 from launchkit.errors import UserError
+from launchkit.rotations import rpy_to_quaternion
 from launchkit.stock import _entry
 from launchkit.stock.gazebo_ros import messages
-from launchkit.stock.rotations import rpy_to_quaternion
 
 
 class SpawnError(UserError):
