@@ -28,7 +28,7 @@ from launchkit.packages import PackageIndex
 from launchkit.ros import Node, QoSProfile, spin_once
 from launchkit.ros.context import Context
 from launchkit.ros.router import start_router
-from launchkit.stock.rotations import yaw_of
+from launchkit.rotations import yaw_of
 
 SEED_URDF = Path(__file__).resolve().parents[2] / "urdf" / "three_wheeled_robot.urdf"
 

@@ -54,6 +54,8 @@ SERVICES: dict[str, str] = {
         "---\n"
         "bool success\n"
     ),
+    # the tf2_frames service of a tf2_ros Buffer made with a node
+    "tf2_msgs/srv/FrameGraph": "---\nstring frame_yaml\n",
     "sensor_msgs/srv/SetCameraInfo": (
         "sensor_msgs/CameraInfo camera_info\n---\nbool success\nstring status_message\n"
     ),

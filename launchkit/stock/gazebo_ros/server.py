@@ -27,6 +27,7 @@ from pathlib import Path
 from typing import Any
 
 import launchkit.ros as ros
+from launchkit.rotations import quaternion_to_rpy
 from launchkit.stock import _entry
 from launchkit.stock.gazebo_ros import messages
 from launchkit.stock.gazebo_ros.camera_node import CameraNodeParams
@@ -40,7 +41,6 @@ from launchkit.stock.gazebo_ros.sim.pacing import Pacer
 from launchkit.stock.gazebo_ros.sim.plugins import EntityPlugins, PluginDefaults, load_plugins
 from launchkit.stock.gazebo_ros.sim.sensors import RateGate
 from launchkit.stock.gazebo_ros.sim.world import load_world, resolve_world
-from launchkit.stock.rotations import quaternion_to_rpy
 
 #: Seconds a stop request may take before the server prints its stacks and exits hard (under
 #: ROS's default SIGINT -> SIGKILL escalation of 10 s).

@@ -20,9 +20,9 @@ from typing import Any
 import launchkit.ros as ros
 from launchkit.errors import UserError
 from launchkit.ros.services import ServiceCallError
+from launchkit.rotations import rpy_to_quaternion
 from launchkit.stock import _entry
 from launchkit.stock.gazebo_ros import messages
-from launchkit.stock.rotations import rpy_to_quaternion
 
 
 class SpawnError(UserError):

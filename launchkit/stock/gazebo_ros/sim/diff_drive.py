@@ -13,7 +13,7 @@ import math
 from collections.abc import Callable, Mapping
 from dataclasses import dataclass, field, replace
 
-from launchkit.stock.rotations import quaternion_from_yaw, yaw_of
+from launchkit.rotations import quaternion_from_yaw, yaw_of
 
 #: ``odometry_source`` values, as gazebo_ros numbers them.
 ENCODER = 0

@@ -16,12 +16,12 @@ from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
 
+from launchkit.rotations import conjugate, rotate
 from launchkit.stock.gazebo_ros.sim.diff_drive import BaseState
 from launchkit.stock.gazebo_ros.sim.materials import material_rgba
 from launchkit.stock.gazebo_ros.sim.model import ModelError, ModelSpec, parse_model
 from launchkit.stock.gazebo_ros.sim.scenery import build_scenery
 from launchkit.stock.gazebo_ros.sim.world import WorldSpec
-from launchkit.stock.rotations import conjugate, rotate
 
 Pose = tuple[float, float, float, float, float, float]
 

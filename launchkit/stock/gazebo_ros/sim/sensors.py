@@ -15,9 +15,9 @@ from typing import Any
 
 import numpy as np
 
+from launchkit.rotations import rotate
 from launchkit.stock.gazebo_ros.sim.engine import Entity, Simulation
 from launchkit.stock.gazebo_ros.sim.model import ModelError, SensorSpec
-from launchkit.stock.rotations import rotate
 
 #: ROS 1 camera plugin tags that gazebo_ros for ROS 2 ignores; logged when found.
 CAMERA_ROS1_TAGS = (

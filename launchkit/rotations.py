@@ -1,6 +1,6 @@
-"""Quaternions, rotations and Euler angles: the one place launchkit's stock nodes and simulator
-do rotation math (plain math: a state publisher needs a handful each message, and numpy's call
-overhead would cost more than the arithmetic).
+"""Quaternions, rotations and Euler angles: the one place launchkit's stock nodes, simulator and
+tf2 buffer do rotation math (plain math: a state publisher needs a handful each message, and
+numpy's call overhead would cost more than the arithmetic).
 
 Quaternions are ``(x, y, z, w)`` as in geometry_msgs; Euler angles are URDF's and ROS's fixed-axis
 roll, pitch, yaw (about x, then y, then z).
