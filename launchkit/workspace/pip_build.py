@@ -1,0 +1,165 @@
+"""Building an ``ament_python`` package: pip builds and installs it into ``install/PKG``
+(``pip install --prefix``), and the ament layout is written around what pip installed.
+
+The source is copied to ``build/PKG`` first and pip builds the copy, so setuptools' own
+``build/`` and ``*.egg-info`` folders land there and never in the source (colcon keeps the
+source clean the same way). pip runs offline, without build isolation and without installing
+dependencies: the build uses the setuptools of launchkit's own environment.
+
+pip puts console scripts in ``PREFIX/bin``; a package whose ``setup.cfg`` says where its
+scripts go (``[install] install_scripts=$base/lib/PKG``, what ``ros2 pkg create`` writes, or
+``[develop] script_dir``) gets them moved there, where ``ros2 run`` and ``launchkit exec``
+look. Without it they stay in ``bin/``, which ``install/setup.sh`` puts on ``PATH``.
+"""
+
+from __future__ import annotations
+
+import configparser
+import os
+import re
+import shutil
+import sys
+from pathlib import Path
+
+from launchkit.errors import LaunchkitError, Location
+from launchkit.workspace.ament_layout import finish_layout, python_paths
+from launchkit.workspace.dist_record import find_dist_info, rewrite_record
+from launchkit.workspace.manifest import Manifest
+from launchkit.workspace.processes import ChildProcesses
+from launchkit.workspace.symlink_install import link_to_source
+
+PIP_INSTALL = [
+    "install",
+    "--no-deps",
+    "--no-build-isolation",
+    "--no-index",
+    "--ignore-installed",
+    "--no-cache-dir",
+    "--disable-pip-version-check",
+    "--no-input",
+    "--no-warn-script-location",
+]
+#: Lines of pip's output shown under a failure (after its first error line).
+TAIL_LINES = 12
+_SETUP_FILES = ("setup.py", "setup.cfg", "pyproject.toml")
+_PREFIX_VARIABLE = re.compile(r"\$(\{(base|prefix|exec_prefix|platbase)\}|base|prefix|platbase)")
+
+
+class BuildFailure(LaunchkitError):
+    """A package failed to build; ``quoted`` holds what the failing tool said."""
+
+
+def build_python_package(
+    manifest: Manifest,
+    prefix: Path,
+    staging: Path,
+    log: Path,
+    processes: ChildProcesses,
+    symlink: bool,
+) -> None:
+    """Build and install ``manifest``'s package into ``prefix``; :class:`BuildFailure` if
+    pip fails (with pip's first error line and its last lines)."""
+    source = manifest.path
+    if not any((source / name).is_file() for name in _SETUP_FILES):
+        raise BuildFailure(
+            "an ament_python package without setup.py",
+            manifest.location,
+            expected="setup.py (or setup.cfg, pyproject.toml) beside package.xml",
+        )
+    _fresh_copy(source, staging)
+    remove_prefix(prefix)
+    argv = [sys.executable, "-m", "pip", *PIP_INSTALL, "--prefix", str(prefix), str(staging)]
+    status = processes.run(argv, staging, log, os.environ)
+    if status != 0:
+        raise pip_failure(status, log)
+    sites = python_paths(prefix)
+    dist_info = find_dist_info(sites[0]) if sites else None
+    scripts = _script_folder(source, prefix)
+    if scripts is not None and dist_info is not None:
+        _move_scripts(prefix / "bin", scripts, dist_info)
+    if symlink and dist_info is not None:
+        link_to_source(source, prefix, dist_info, processes, log)
+    finish_layout(manifest, prefix, symlink)
+
+
+def remove_prefix(prefix: Path) -> None:
+    """Empty the package's install prefix (pip does not remove what an earlier build left);
+    a symlink is removed, never followed."""
+    if prefix.is_symlink() or prefix.is_file():
+        prefix.unlink()
+    elif prefix.is_dir():
+        shutil.rmtree(prefix)
+
+
+def pip_failure(status: int, log: Path) -> BuildFailure:
+    """The failure pip's exit ``status`` and output (in ``log``) make."""
+    lines = log.read_text(encoding="utf-8", errors="replace").splitlines()
+    tail = [line.rstrip() for line in lines[-TAIL_LINES:] if line.strip()]
+    first = next((line.strip() for line in lines if re.match(r"\s*(ERROR|error)\b", line)), None)
+    quoted = ([first, "..."] if first is not None and first not in tail else []) + tail
+    return BuildFailure(
+        f"pip exited with status {status}",
+        quoted=quoted,
+        hint=f"pip's whole output: {log}",
+    )
+
+
+def _fresh_copy(source: Path, staging: Path) -> None:
+    remove_prefix(staging)
+    top = os.path.realpath(source)
+
+    def leave_out(folder: str, names: list[str]) -> set[str]:
+        skipped = {n for n in names if n in ("__pycache__", ".git") or n.endswith(".egg-info")}
+        if os.path.realpath(folder) == top:  # setuptools' outputs of a build by hand
+            skipped.update(n for n in names if n in ("build", "dist"))
+        return skipped
+
+    shutil.copytree(source, staging, ignore=leave_out, ignore_dangling_symlinks=True)
+
+
+def _script_folder(source: Path, prefix: Path) -> Path | None:
+    """Where ``setup.cfg`` says scripts go, with ``$base`` as the prefix; None if it does not
+    say. A folder outside the prefix is refused."""
+    config = configparser.ConfigParser(interpolation=None)
+    try:
+        config.read(source / "setup.cfg", encoding="utf-8")
+    except configparser.Error as error:
+        raise BuildFailure(
+            f"setup.cfg cannot be read: {error}", Location(str(source / "setup.cfg"))
+        ) from None
+    for section, keys in (
+        ("install", ("install_scripts", "install-scripts")),
+        ("develop", ("script_dir", "script-dir")),
+    ):
+        for key in keys:
+            value = config.get(section, key, fallback=None)
+            if value:
+                folder = Path(_PREFIX_VARIABLE.sub(lambda _: str(prefix), value.strip()))
+                folder = folder if folder.is_absolute() else prefix / folder
+                if not os.path.normpath(folder).startswith(os.path.normpath(prefix) + os.sep):
+                    raise BuildFailure(
+                        f"setup.cfg's [{section}] {key} = {value} is outside the install prefix",
+                        Location(str(source / "setup.cfg")),
+                        expected="$base/lib/PACKAGE",
+                    )
+                return folder
+    return None
+
+
+def _move_scripts(bin_folder: Path, scripts: Path, dist_info: Path) -> None:
+    if not bin_folder.is_dir() or bin_folder == scripts:
+        return
+    site = dist_info.parent
+    scripts.mkdir(parents=True, exist_ok=True)
+    moved: dict[str, str] = {}
+    for entry in sorted(bin_folder.iterdir()):
+        target = scripts / entry.name
+        entry.rename(target)
+        moved[_record_path(entry, site)] = _record_path(target, site)
+    if not any(bin_folder.iterdir()):
+        bin_folder.rmdir()
+    rewrite_record(dist_info, moved)
+
+
+def _record_path(path: Path, site: Path) -> str:
+    return Path(os.path.relpath(path, site)).as_posix()
