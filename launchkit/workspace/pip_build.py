@@ -40,7 +40,7 @@ PIP_INSTALL = [
     "--no-warn-script-location",
 ]
 #: Lines of pip's output shown under a failure (after its first error line).
-TAIL_LINES = 12
+TAIL_LINES = 20
 _SETUP_FILES = ("setup.py", "setup.cfg", "pyproject.toml")
 _PREFIX_VARIABLE = re.compile(r"\$(\{(base|prefix|exec_prefix|platbase)\}|base|prefix|platbase)")
 
@@ -71,7 +71,7 @@ def build_python_package(
     argv = [sys.executable, "-m", "pip", *PIP_INSTALL, "--prefix", str(prefix), str(staging)]
     status = processes.run(argv, staging, log, os.environ)
     if status != 0:
-        raise pip_failure(status, log)
+        raise pip_failure(status, log, {str(staging): str(source)})
     sites = python_paths(prefix)
     dist_info = find_dist_info(sites[0]) if sites else None
     scripts = _script_folder(source, prefix)
@@ -91,9 +91,13 @@ def remove_prefix(prefix: Path) -> None:
         shutil.rmtree(prefix)
 
 
-def pip_failure(status: int, log: Path) -> BuildFailure:
-    """The failure pip's exit ``status`` and output (in ``log``) make."""
-    lines = log.read_text(encoding="utf-8", errors="replace").splitlines()
+def pip_failure(status: int, log: Path, renames: dict[str, str]) -> BuildFailure:
+    """The failure pip's exit ``status`` and output (in ``log``) make; ``renames`` maps the
+    working copy's path to the source's, so the lines shown name the files to edit."""
+    text = log.read_text(encoding="utf-8", errors="replace")
+    for copy, source in renames.items():
+        text = text.replace(copy, source)
+    lines = text.splitlines()
     tail = [line.rstrip() for line in lines[-TAIL_LINES:] if line.strip()]
     first = next((line.strip() for line in lines if re.match(r"\s*(ERROR|error)\b", line)), None)
     quoted = ([first, "..."] if first is not None and first not in tail else []) + tail
