@@ -50,9 +50,18 @@ def build_parser() -> argparse.ArgumentParser:
         action="store_true",
         help="link Python code and data files to the source: edits show without a rebuild",
     )
-    parser.add_argument("--build-base", type=Path, default=Path("build"), metavar="PATH")
-    parser.add_argument("--install-base", type=Path, default=Path("install"), metavar="PATH")
-    parser.add_argument("--log-base", type=Path, default=Path("log"), metavar="PATH")
+    for name, job in (
+        ("build", "pip's working copies"),
+        ("install", "the packages"),
+        ("log", "logs"),
+    ):
+        parser.add_argument(
+            f"--{name}-base",
+            type=Path,
+            default=Path(name),
+            metavar="PATH",
+            help=f"where {job} go (default {name})",
+        )
     parser.add_argument(
         "--parallel-workers",
         type=_positive,

@@ -42,6 +42,8 @@ PIP_INSTALL = [
 #: Lines of pip's output shown under a failure (after its first error line).
 TAIL_LINES = 20
 _SETUP_FILES = ("setup.py", "setup.cfg", "pyproject.toml")
+#: pip settings from the environment that would send the install elsewhere than the prefix.
+_PIP_PLACES = ("PIP_USER", "PIP_TARGET", "PIP_PREFIX", "PIP_ROOT", "PIP_REQUIRE_VIRTUALENV")
 _PREFIX_VARIABLE = re.compile(r"\$(\{(base|prefix|exec_prefix|platbase)\}|base|prefix|platbase)")
 
 
@@ -69,7 +71,8 @@ def build_python_package(
     _fresh_copy(source, staging)
     remove_prefix(prefix)
     argv = [sys.executable, "-m", "pip", *PIP_INSTALL, "--prefix", str(prefix), str(staging)]
-    status = processes.run(argv, staging, log, os.environ)
+    env = {k: v for k, v in os.environ.items() if k not in _PIP_PLACES}
+    status = processes.run(argv, staging, log, env)
     if status != 0:
         raise pip_failure(status, log, {str(staging): str(source)})
     sites = python_paths(prefix)
