@@ -69,8 +69,8 @@ def build(options: BuildOptions, report: Report | None = None) -> int:
     if any(isinstance(p, Job) and p.cmake is None for p in plans.values()):
         _check_python_tools()
     prepare_folders(options.build_base, options.install_base, options.log_base)
-    if not selected:
-        report.stream.write(f"no packages found in {', '.join(map(str, _base_paths(options)))}\n")
+    if not workspace.packages:
+        report.note(f"no packages found in {', '.join(map(str, _base_paths(options)))}")
     run = _Run(options, workspace, plans, report, new_log_folder(options.log_base))
     results = run.all(selected)
     write_setup_scripts(options.install_base)

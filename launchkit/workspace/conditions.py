@@ -84,19 +84,18 @@ class _Parser:
         return token
 
     def disjunction(self) -> bool:
-        # every operand is evaluated (no short cut), so a malformed right side is reported
-        values = [self.conjunction()]
-        while self._peek() == "or":
-            self._take()
-            values.append(self.conjunction())
-        return any(values)
+        return any(self._joined("or", self.conjunction))
 
     def conjunction(self) -> bool:
-        values = [self.comparison()]
-        while self._peek() == "and":
+        return all(self._joined("and", self.comparison))
+
+    def _joined(self, word: str, operand: Callable[[], bool]) -> list[bool]:
+        # every operand is evaluated (no short cut), so a malformed right side is reported
+        values = [operand()]
+        while self._peek() == word:
             self._take()
-            values.append(self.comparison())
-        return all(values)
+            values.append(operand())
+        return values
 
     def comparison(self) -> bool:
         if self._peek() == "(":

@@ -9,21 +9,31 @@ orders a build; a ``group_depend`` stands for every workspace package that is a
 
 from __future__ import annotations
 
-from collections.abc import Iterable
+from collections.abc import Iterable, Mapping
 from graphlib import CycleError, TopologicalSorter
 
 from launchkit.errors import UserError
-from launchkit.workspace.manifest import Dependency, Manifest
+from launchkit.workspace.manifest import DEPENDENCY_TAGS, Dependency, Manifest
 
-#: Dependency kinds that order a build.
-ORDERING_KINDS = (
-    "depend",
-    "build_depend",
-    "build_export_depend",
-    "buildtool_depend",
-    "buildtool_export_depend",
-    "exec_depend",
+#: Dependency kinds that order a build (format 1's ``run_depend`` is read as ``exec_depend``).
+ORDERING_KINDS = tuple(
+    kind for kind in DEPENDENCY_TAGS if kind not in ("test_depend", "doc_depend", "run_depend")
 )
+
+
+def topological(dependencies: Mapping[str, Iterable[str]]) -> list[str]:
+    """Every name of ``dependencies`` after the names it maps to (ties by name);
+    :class:`graphlib.CycleError` if they go round."""
+    sorter: TopologicalSorter[str] = TopologicalSorter()
+    for name in sorted(dependencies):
+        sorter.add(name, *sorted(dependencies[name]))
+    sorter.prepare()
+    order: list[str] = []
+    while sorter.is_active():
+        ready = sorted(sorter.get_ready())
+        order.extend(ready)
+        sorter.done(*ready)
+    return order
 
 
 class Workspace:
@@ -54,19 +64,10 @@ class Workspace:
     def order(self) -> list[str]:
         """Every package, each after the ones it depends on (ties by name);
         :class:`UserError` naming the packages of a cycle."""
-        sorter: TopologicalSorter[str] = TopologicalSorter()
-        for name in sorted(self.edges):
-            sorter.add(name, *sorted(self.edges[name]))
         try:
-            sorter.prepare()
+            return topological(self.edges)
         except CycleError as error:
             raise self._cycle_error(list(error.args[1])) from None
-        order: list[str] = []
-        while sorter.is_active():
-            ready = sorted(sorter.get_ready())
-            order.extend(ready)
-            sorter.done(*ready)
-        return order
 
     def _cycle_error(self, cycle: list[str]) -> UserError:
         # graphlib reports the cycle backwards (each node is a dependency of the next)

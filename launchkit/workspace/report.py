@@ -34,6 +34,10 @@ class Report:
     def _line(self, text: str) -> None:
         print(printable(text), file=self.stream, flush=True)
 
+    def note(self, text: str) -> None:
+        """A line about the build as a whole."""
+        self._line(text)
+
     def started(self, name: str) -> None:
         """A package's build began."""
         self._line(f"Starting >>> {name}")

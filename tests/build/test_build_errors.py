@@ -134,10 +134,14 @@ def test_well_known_and_installed_dependencies_are_not_missing(workspace: Path) 
     assert status == 0, out
 
 
-def test_packages_select_builds_only_those(workspace: Path) -> None:
+def _three(workspace: Path) -> None:
     _interfaces(workspace, "base_msgs")
     _interfaces(workspace, "top_msgs", ["base_msgs"])
     _interfaces(workspace, "other_msgs")
+
+
+def test_packages_select_builds_only_those(workspace: Path) -> None:
+    _three(workspace)
     status, out, _ = _build(workspace, "--packages-select", "top_msgs")
     assert status == 0, out
     assert sorted(p.name for p in (workspace / "install").iterdir() if p.is_dir()) == ["top_msgs"]
@@ -145,9 +149,7 @@ def test_packages_select_builds_only_those(workspace: Path) -> None:
 
 
 def test_packages_up_to_builds_them_and_their_dependencies(workspace: Path) -> None:
-    _interfaces(workspace, "base_msgs")
-    _interfaces(workspace, "top_msgs", ["base_msgs"])
-    _interfaces(workspace, "other_msgs")
+    _three(workspace)
     status, out, _ = _build(workspace, "--packages-up-to", "top_msgs")
     assert status == 0, out
     installed = sorted(p.name for p in (workspace / "install").iterdir() if p.is_dir())

@@ -171,15 +171,7 @@ def launchkit_build(
     workspace: Path, *args: str, env: Mapping[str, str]
 ) -> subprocess.CompletedProcess[str]:
     """``launchkit build ARGS`` in ``workspace``."""
-    return subprocess.run(
-        [sys.executable, "-m", "launchkit", "build", *args],
-        cwd=workspace,
-        env=dict(env),
-        capture_output=True,
-        text=True,
-        timeout=600,
-        check=False,
-    )
+    return _run([sys.executable, "-m", "launchkit", "build", *args], workspace, env)
 
 
 def in_sourced_shell(
@@ -187,12 +179,10 @@ def in_sourced_shell(
 ) -> subprocess.CompletedProcess[str]:
     """``script`` run by ``sh -c`` after ``. WORKSPACE/install/setup.sh``, in ``cwd``."""
     setup = workspace / "install" / "setup.sh"
+    return _run(["sh", "-c", f'. "{setup}" && {script}'], cwd, env)
+
+
+def _run(argv: list[str], cwd: Path, env: Mapping[str, str]) -> subprocess.CompletedProcess[str]:
     return subprocess.run(
-        ["sh", "-c", f'. "{setup}" && {script}'],
-        cwd=cwd,
-        env=dict(env),
-        capture_output=True,
-        text=True,
-        timeout=120,
-        check=False,
+        argv, cwd=cwd, env=dict(env), capture_output=True, text=True, timeout=600, check=False
     )
