@@ -75,9 +75,9 @@ def run_dependencies(prefix: Path, name: str) -> list[str]:
 
 def python_paths(prefix: Path) -> list[Path]:
     """The prefix's folders of Python packages (``lib/python3.X/site-packages`` for the pip
-    layout, ``dist-packages`` for Debian's), sorted."""
+    layout, ``dist-packages`` or ``local/lib/...`` for Debian's), sorted."""
     found: list[Path] = []
-    for pattern in ("lib/python3*/site-packages", "lib/python3*/dist-packages"):
+    for pattern in ("lib/python3*/*-packages", "local/lib/python3*/dist-packages"):
         found.extend(p for p in prefix.glob(pattern) if p.is_dir())
     return sorted(found)
 

@@ -23,7 +23,7 @@ from pathlib import Path
 
 from launchkit.errors import LaunchkitError, Location
 from launchkit.workspace.ament_layout import finish_layout, python_paths
-from launchkit.workspace.dist_record import find_dist_info, rewrite_record
+from launchkit.workspace.dist_record import find_dist_info, installed_paths, rewrite_record
 from launchkit.workspace.manifest import Manifest
 from launchkit.workspace.processes import ChildProcesses
 from launchkit.workspace.symlink_install import link_to_source
@@ -79,7 +79,7 @@ def build_python_package(
     dist_info = find_dist_info(sites[0]) if sites else None
     scripts = _script_folder(source, prefix)
     if scripts is not None and dist_info is not None:
-        _move_scripts(prefix / "bin", scripts, dist_info)
+        _move_scripts(prefix, scripts, dist_info)
     if symlink and dist_info is not None:
         link_to_source(source, prefix, dist_info, processes, log)
     finish_layout(manifest, prefix, symlink)
@@ -153,18 +153,22 @@ def _script_folder(source: Path, prefix: Path) -> Path | None:
     return None
 
 
-def _move_scripts(bin_folder: Path, scripts: Path, dist_info: Path) -> None:
-    if not bin_folder.is_dir() or bin_folder == scripts:
-        return
+def _move_scripts(prefix: Path, scripts: Path, dist_info: Path) -> None:
+    """Move the scripts pip installed (into ``bin/``, or ``local/bin/`` in Debian's scheme,
+    as its RECORD says) to ``scripts``, keeping RECORD true."""
     site = dist_info.parent
-    scripts.mkdir(parents=True, exist_ok=True)
+    bins = {str(prefix / "bin"), str(prefix / "local" / "bin")} - {str(scripts)}
     moved: dict[str, str] = {}
-    for entry in sorted(bin_folder.iterdir()):
-        target = scripts / entry.name
-        entry.rename(target)
-        moved[_record_path(entry, site)] = _record_path(target, site)
-    if not any(bin_folder.iterdir()):
-        bin_folder.rmdir()
+    for written in installed_paths(dist_info):
+        path = Path(os.path.normpath(site / written))
+        if str(path.parent) in bins and path.is_file():
+            scripts.mkdir(parents=True, exist_ok=True)
+            target = scripts / path.name
+            path.rename(target)
+            moved[written] = _record_path(target, site)
+    for folder in bins:
+        if os.path.isdir(folder) and not os.listdir(folder):
+            os.rmdir(folder)
     rewrite_record(dist_info, moved)
 
 

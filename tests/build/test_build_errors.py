@@ -235,3 +235,18 @@ def test_a_format_1_package_and_conditions_are_read(workspace: Path) -> None:
     status, out, _ = _build(workspace)
     assert status == 0, out
     assert out.index("Finished <<< old_msgs") < out.index("Starting >>> cond_msgs")
+
+
+def test_base_paths_and_install_base_put_the_workspace_elsewhere(tmp_path: Path) -> None:
+    root = tmp_path / "ws"  # no src/: the packages are in two other folders
+    write_package(root / "repos" / "one", "one_msgs", interface_package("one_msgs", NUM))
+    write_package(root / "more", "two_msgs", interface_package("two_msgs", NUM))
+    status, out, _ = _build(
+        root, "--base-paths", "repos", "more", "--install-base", "out/inst", "--log-base", "logs"
+    )
+    assert status == 0, out
+    assert "Summary: 2 packages finished" in out
+    installed = root / "out" / "inst"
+    assert sorted(p.name for p in installed.iterdir() if p.is_dir()) == ["one_msgs", "two_msgs"]
+    assert str(installed / "two_msgs") in (installed / "local_setup.sh").read_text()
+    assert (root / "logs" / "latest_build").is_symlink() and not (root / "install").exists()
