@@ -36,6 +36,21 @@ LAUNCH = """\
         args="$(find-pkg-share talker_py)/config/talk.yaml"/>
 </launch>
 """
+LAUNCH_PY = """\
+import os
+
+from ament_index_python.packages import get_package_share_directory
+from launch import LaunchDescription
+from launch_ros.actions import Node
+
+
+def generate_launch_description():
+    params = os.path.join(get_package_share_directory('talker_py'), 'config', 'talk.yaml')
+    return LaunchDescription([
+        Node(package='talker_py', executable='talk', name='talk', output='screen',
+             arguments=[params]),
+    ])
+"""
 PARAMS = "talk:\n  ros__parameters:\n    greeting: hi from the params file\n"
 INTERFACES = {
     "msg/Num.msg": "int64 num\n",
@@ -67,6 +82,7 @@ def built(tmp_path_factory: pytest.TempPathFactory) -> Built:
     src = root / "src"
     talker = python_package("talker_py", {"talk": TALK}, {"exec_depend": ["rclpy", "std_msgs"]})
     talker["launch/talk.launch.xml"] = LAUNCH
+    talker["launch/talk.launch.py"] = LAUNCH_PY
     talker["config/talk.yaml"] = PARAMS
     write_package(src, "talker_py", talker)
     write_package(

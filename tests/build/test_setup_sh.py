@@ -6,6 +6,7 @@ from __future__ import annotations
 
 from pathlib import Path
 
+import pytest
 from conftest import Built
 from workspaces import environment, in_sourced_shell
 
@@ -59,12 +60,14 @@ def test_sourcing_twice_changes_nothing_and_keeps_what_was_there(
     assert path == env["PATH"]  # the scripts are in lib/PKG: nothing for PATH
 
 
-def test_a_launch_file_of_a_built_package_runs_with_find_pkg_share(
-    built: Built, launch: LaunchFactory, tmp_path: Path
+@pytest.mark.parametrize("file", ["talk.launch.xml", "talk.launch.py"])
+def test_a_launch_file_of_a_built_package_finds_its_share_folder(
+    built: Built, launch: LaunchFactory, tmp_path: Path, file: str
 ) -> None:
+    # $(find-pkg-share talker_py) in XML, get_package_share_directory('talker_py') in Python
     sourced = in_sourced_shell(built.root, "env -0", environment(built.home), tmp_path)
     env = dict(item.split("=", 1) for item in sourced.stdout.split("\0") if "=" in item)
-    handle = launch("talker_py", "talk.launch.xml", env=env, allow_exit={"talk": 0})
+    handle = launch("talker_py", file, env=env, allow_exit={"talk": 0})
     talk = handle.process("talk")
     assert talk.wait_exit() == 0
     share = built.install / "talker_py" / "share" / "talker_py"
