@@ -120,6 +120,9 @@ def build_parser() -> argparse.ArgumentParser:
             name, help=f"ROS {name} tools (see launchkit {name} --help)", add_help=False
         )
     commands.add_parser("bag", help="record and play rosbag2 bags (see launchkit bag --help)")
+    commands.add_parser(
+        "build", help="build a ROS 2 workspace's src/ into install/ (see launchkit build --help)"
+    )
     return parser
 
 
@@ -143,6 +146,10 @@ def main(argv: list[str] | None = None) -> int:
         return _guarded(lambda: bridge_main(argv[1:]), debug="--debug" in argv)
     if argv and argv[0] == "bag":
         return _guarded(lambda: _bag_command(argv[1:]), debug="--debug" in argv)
+    if argv and argv[0] == "build":
+        from launchkit.workspace.cli import main as build_main
+
+        return _guarded(lambda: build_main(argv[1:]), debug="--debug" in argv)
     args = build_parser().parse_args(argv)
     if args.command is None:
         build_parser().print_help()
