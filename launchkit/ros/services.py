@@ -221,8 +221,11 @@ class Client(_ServiceEntity):
         )
 
     def wait_for_service(self, timeout_sec: float | None = None) -> bool:
-        """Block until a server appears; False after ``timeout_sec``."""
-        return self.node.context.graph.wait_for(self.service_is_ready, timeout_sec)
+        """Block until a server appears; False after ``timeout_sec``, or as soon as the context
+        is no longer ok (a SIGINT or SIGTERM, as rclpy's wait stops)."""
+        context = self.node.context
+        context.graph.wait_for(lambda: self.service_is_ready() or not context.ok(), timeout_sec)
+        return self.service_is_ready()
 
     def call_async(self, request: Any, timeout_sec: float = 60.0) -> Future:
         """Send ``request``; the future completes with the response (or an exception).

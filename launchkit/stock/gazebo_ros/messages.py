@@ -10,23 +10,19 @@ from typing import Any
 
 import numpy as np
 
+from launchkit.ros.msgs import get_message, get_service
 from launchkit.stock.gazebo_ros.sim.diff_drive import Odometry
 from launchkit.stock.gazebo_ros.sim.sensors import CameraConfig, LidarConfig
 
 
 def message_class(package: str, name: str) -> Any:
-    """Message class ``package/msg/name`` of the ROS layer (imported on first use, so that
-    importing this module does not start the ROS layer): the one way the simulator's nodes
+    """Message class ``package/msg/name`` of the ROS layer: the one way the simulator's nodes
     get their message types."""
-    from launchkit.ros.msgs import get_message
-
     return get_message(f"{package}/msg/{name}")
 
 
 def service_class(package: str, name: str) -> Any:
-    """Service type ``package/srv/name`` of the ROS layer (imported on first use)."""
-    from launchkit.ros.msgs import get_service
-
+    """Service type ``package/srv/name`` of the ROS layer."""
     return get_service(f"{package}/srv/{name}")
 
 
