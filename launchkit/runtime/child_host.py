@@ -8,6 +8,7 @@ from collections.abc import Callable
 
 from launchkit.description.process_spec import ProcessSpec
 from launchkit.errors import LaunchkitError
+from launchkit.runtime.announcements import Announcements
 from launchkit.runtime.hooks import SupervisorHooks
 from launchkit.runtime.lifecycle import SendSignal
 from launchkit.runtime.node_host import NodeHost
@@ -29,6 +30,7 @@ class ChildHostMixin:
     clock: Callable[[], float]
     hooks: SupervisorHooks
     _node_host: NodeHost
+    _announcements: Announcements
 
     def log(self, level: str, logger: str, message: str) -> None:
         """A launch line (the supervisor's)."""
@@ -36,6 +38,10 @@ class ChildHostMixin:
 
     def _managed(self, spec: ProcessSpec) -> SupervisedProcess:
         raise NotImplementedError
+
+    def announce(self, logger: str, text: str) -> None:
+        """A line for the user (``{"op": "announce"}``), held until the console settles."""
+        self._announcements.hold(logger, text, self.clock())
 
     def _watch(self, process: SupervisedProcess) -> None:
         raise NotImplementedError

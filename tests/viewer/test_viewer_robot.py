@@ -16,6 +16,7 @@ import math
 import os
 import shutil
 import threading
+import time
 from pathlib import Path
 from typing import Any
 
@@ -109,8 +110,11 @@ def test_a_page_shows_and_drives_the_robot_and_the_camera_renders_only_for_it(
 
     # 1. the console names the address, whatever rviz2's output (here "log": not on screen)
     rviz2.wait_output("Foxglove WebSocket on", timeout=60)  # printed after the announcement
-    console = robot.launcher_log.read_text()
-    assert f"]: viewer: {url}" in console, console[-3000:]
+    # the launcher prints it as the bring-up's last line, once its console has settled
+    deadline = time.monotonic() + 30
+    while f"]: viewer: {url}" not in (console := robot.launcher_log.read_text()):
+        assert time.monotonic() < deadline, console[-3000:]
+        time.sleep(0.1)
 
     # 2. Foxglove clients see every topic (the camera's too) and get what they subscribe to ...
     client = foxglove_view(f"ws://127.0.0.1:{robot.viewer_port}")

@@ -105,7 +105,7 @@ def main(argv: list[str]) -> int:
         )
         server.start()
         link.connect(hub, server)
-        announce(f"viewer: {server.url}")
+        announce(f"viewer: {server.url} (open it in a browser)")
         for line in connect_lines(server, config):  # after the announcement: tests rely on it
             print(line, flush=True)
         if not policy.loopback_only:
