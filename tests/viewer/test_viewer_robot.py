@@ -12,7 +12,6 @@ refreshes the picture in docs/viewer.md.
 
 from __future__ import annotations
 
-import math
 import os
 import shutil
 import threading
@@ -168,7 +167,10 @@ def test_a_page_shows_and_drives_the_robot_and_the_camera_renders_only_for_it(
     if os.environ.get("LAUNCHKIT_VIEWER_SCREENSHOT"):
         shutil.copyfile(shot, Path(os.environ["LAUNCHKIT_VIEWER_SCREENSHOT"]))
 
-    # 6. holding "i" in the page drives the robot (teleop_twist_keyboard's forward: 0.5 m/s)
+    # 6. holding "i" in the page drives the robot (teleop_twist_keyboard's +x: 0.5 m/s), which
+    # the seed's wheel axes turn into backwards, toward -x, as the drive panel says
+    assert "drives backwards" in viewer.page.locator("#drive-note").inner_text()
+    (before,) = robot.expect_topic("/odom", within=10)
     viewer.page.locator("#scene").focus()
     viewer.page.keyboard.down("i")
     try:
@@ -179,7 +181,7 @@ def test_a_page_shows_and_drives_the_robot_and_the_camera_renders_only_for_it(
     robot.expect_topic(
         "/odom", within=30, where=lambda m: abs(m.twist.twist.linear.x) < 0.02
     )  # let go: a zero twist stops it
-    assert math.isfinite(moving.pose.pose.position.x)
+    assert moving.pose.pose.position.x < before.pose.pose.position.x - 0.05, (before, moving)
 
     # 7. the page goes: nobody watches the camera, and it stops rendering
     viewer.page.close()
