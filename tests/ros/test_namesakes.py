@@ -36,12 +36,10 @@ def wait_stderr(child: Child, text: str, timeout: float) -> None:
 def test_two_nodes_of_one_name_in_the_graph_warn_and_the_tools_show_both(
     router_endpoint: str, children: list[Child]
 ) -> None:
-    first = Child([str(NODES_DIR / "talker.py")])
-    children.append(first)
-    first.expect("talker ready", timeout=15)
-    second = Child([str(NODES_DIR / "talker.py")])
-    children.append(second)
-    second.expect("talker ready", timeout=15)
+    for _ in range(2):  # one after the other, as a launch run twice
+        children.append(Child([str(NODES_DIR / "talker.py")]))
+        children[-1].expect("talker ready", timeout=15)
+    first, second = children
     for twin in (second, first):  # the one that joined, and the one already there
         wait_stderr(twin, WARNING.format(domain=domain_id()), timeout=10)
 
