@@ -61,6 +61,9 @@ class ChildHost(Protocol):
     def log(self, level: str, logger: str, message: str) -> None:
         """A launch line."""
 
+    def announce(self, logger: str, text: str) -> None:
+        """A line for the user under ``logger``, printed once the launch's console settles."""
+
 
 class _Connection:
     def __init__(self, sock: socket.socket, owner: SupervisedProcess, peer: int) -> None:
@@ -208,7 +211,7 @@ class ChildRequests:
                 raise RequestError('an announce request is {"op": "announce", "text": TEXT}')
             if not text or len(text) > 500 or not text.isprintable():
                 raise RequestError("text must be one printable line of at most 500 characters")
-            self._host.log("INFO", owner.label, text)
+            self._host.announce(owner.label, text)
             return {}
         raise RequestError(f"unknown op {op!r} (expected 'start', 'stop' or 'announce')")
 

@@ -31,6 +31,7 @@ from launchkit.description.events import ExecutionComplete
 from launchkit.description.process_spec import ProcessSpec
 from launchkit.envvars import RUN_TMPDIR
 from launchkit.errors import LaunchkitError
+from launchkit.runtime.announcements import Announcements
 from launchkit.runtime.child_requests import ChildRequests, RequestError
 from launchkit.runtime.cleanup import LaunchCleanup
 from launchkit.runtime.hooks import SupervisorHooks
@@ -85,6 +86,7 @@ class Supervisor:
         self._context: LaunchContext | None = None
         self._pending: list[ProcessSpec] | None = None
         self._timers = TimerQueue()
+        self._announcements = Announcements(output)
         self._interrupts = 0
         self._cleanup = LaunchCleanup()
         self._selector = selectors.DefaultSelector()
@@ -122,6 +124,10 @@ class Supervisor:
     def log(self, level: str, logger: str, message: str) -> None:
         """A launch line."""
         self.output.launch_line(level, logger, message)
+
+    def announce(self, logger: str, text: str) -> None:
+        """A line for the user (``{"op": "announce"}``), held until the console settles."""
+        self._announcements.hold(logger, text, self.clock())
 
     def stop_processes(self, matcher: Callable[[object], bool], signum: int | None) -> None:
         """ShutdownProcess (``signum`` None) / SignalProcess for the matching processes."""
@@ -220,7 +226,8 @@ class Supervisor:
         return not self._timers
 
     def _timeout(self) -> float | None:
-        candidates = [self._timers.next_due(), *(p.lifecycle.deadline for p in self.processes)]
+        lifecycles = (p.lifecycle.deadline for p in self.processes)
+        candidates = [self._timers.next_due(), self._announcements.deadline(), *lifecycles]
         deadlines = [d for d in candidates if d is not None]
         timeout = max(0.0, min(deadlines) - self.clock()) if deadlines else None
         if self._io.needs_polling:
@@ -237,6 +244,7 @@ class Supervisor:
                 self._spawn(process)
             elif effect is not None:
                 self._send(process, effect)
+        self._announcements.print_due(now, self.shutting_down)
 
     def _fire(self, timer: DelayedActions, snapshot: Snapshot) -> None:
         context = self._context

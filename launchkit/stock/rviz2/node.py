@@ -111,7 +111,7 @@ def serve(node: ros.Node, args: argparse.Namespace, config: RvizConfig) -> None:
         )
         server.start()
         link.connect(hub, server)
-        announce(f"viewer: {server.url}")
+        announce(f"viewer: {server.url} (open it in a browser)")
         for line in connect_lines(server, config):  # after the announcement: tests rely on it
             print(line, flush=True)
         if not policy.loopback_only:
