@@ -365,13 +365,13 @@ class _Sample:
 def _case_steps(ros: Any, node: Any, msg_type: Any, build: Any) -> dict[str, float]:
     """Each step's microseconds for messages made by ``build()``."""
     import zenoh
-
-    from launchkit.ros.keyexpr import decode_attachment, encode_attachment
-    from launchkit.ros.msgs._codec import codec
     from launchkit.ros.msgs._typestore import typestore
 
+    from launchkit.ros.keyexpr import decode_attachment, encode_attachment
+    from launchkit.ros.msgs import codec
+
     store = typestore()
-    name = msg_type.__msgtype__
+    name = msg_type._TYPE_NAME
     msg = build()
     coder = codec(name)
     data = coder.serialize(msg)

@@ -6,8 +6,13 @@ import argparse
 from typing import Any
 
 from launchkit.ros.message_data import constants_of, fields_of
-from launchkit.ros.msgs import get_message, get_service, normalize_type_name, type_names
-from launchkit.ros.msgs._api import MessageTypeError
+from launchkit.ros.msgs import (
+    MessageTypeError,
+    get_message,
+    get_service,
+    normalize_type_name,
+    type_names,
+)
 
 _BASE, _NAME, _ARRAY, _SEQUENCE = 1, 2, 3, 4
 # the member rosidl gives an empty message (std_srvs/srv/Trigger's request); not in its .msg
@@ -55,7 +60,7 @@ def _show(args: argparse.Namespace) -> int:
             args.type_name = srv._TYPE_NAME
             return _show(args)
         raise
-    _print_lines(definition(cls.__msgtype__))
+    _print_lines(definition(cls._TYPE_NAME))
     return 0
 
 

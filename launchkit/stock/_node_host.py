@@ -66,8 +66,7 @@ def _die_with_parent(launcher: int) -> None:
 
 
 def _warm(modules: list[str]) -> None:
-    from launchkit.ros.msgs import get_message, get_service
-    from launchkit.ros.msgs._codec import codec
+    from launchkit.ros.msgs import codec, get_message, get_service
 
     preload()
     for module in modules:
@@ -76,7 +75,7 @@ def _warm(modules: list[str]) -> None:
         for service in FIRST_WAVE_SERVICES:
             get_service(service)
         for message in FIRST_WAVE_MESSAGES:
-            codec(get_message(message).__msgtype__)
+            codec(get_message(message)._TYPE_NAME)
     threads = len(os.listdir("/proc/self/task"))
     if threads != 1:
         print(

@@ -2,7 +2,8 @@
 
 from __future__ import annotations
 
-import numpy as np
+import array
+
 import pytest
 
 from launchkit.errors import UserError
@@ -23,7 +24,7 @@ def test_numeric_sequences_accept_lists() -> None:
 
     msg = JointState(name=["a", "b"], position=[1.0, 2.0])
     msg.velocity = [3, 4]
-    assert isinstance(msg.velocity, np.ndarray) and msg.velocity.dtype == np.float64
+    assert isinstance(msg.velocity, array.array) and msg.velocity.typecode == "d"
     back = deserialize(serialize(msg), "sensor_msgs/msg/JointState")
     assert back.name == ["a", "b"] and list(back.velocity) == [3.0, 4.0]
 

@@ -20,7 +20,6 @@ Bytes after the message are accepted: the DDS side pads some messages (an empty 
 from __future__ import annotations
 
 import array
-import functools
 import struct
 import sys
 import threading
@@ -62,6 +61,7 @@ class Codec:
         self.type_name = type_name
         self._functions = functions
         self._encode = functions.encoder(type_name)
+        self._decode_native = functions.decoder(type_name, _NATIVE)
 
     def serialize(self, msg: Any) -> bytearray:
         """The CDR bytes of ``msg``, with the encapsulation header."""
@@ -77,7 +77,12 @@ class Codec:
         view = memoryview(data)
         if len(view) < HEADER_LEN or view[0] != 0 or view[1] > 1:
             raise SerdeError("Invalid or unsupported CDR encapsulation.")
-        decode = self._functions.decoder(self.type_name, "<" if view[1] else ">")
+        order = "<" if view[1] else ">"
+        decode = (
+            self._decode_native
+            if order == _NATIVE
+            else self._functions.decoder(self.type_name, order)
+        )
         try:
             message, _ = decode(view[HEADER_LEN:], 0)
         except (struct.error, UnicodeDecodeError, ValueError, IndexError) as exc:
@@ -103,7 +108,7 @@ class CodecFunctions:
             with self._lock:
                 spec = self._spec_of(type_name)
                 source = _EncoderWriter(spec).source()
-                found = _compile(source, "encode", self._namespace(spec, "<"))
+                found = _compile(source, "encode", self._namespace(spec, _NATIVE, True))
                 self._encoders[type_name] = found
         return found
 
@@ -115,13 +120,13 @@ class CodecFunctions:
             with self._lock:
                 spec = self._spec_of(type_name)
                 source = _DecoderWriter(spec, order).source()
-                namespace = self._namespace(spec, order)
+                namespace = self._namespace(spec, order, False)
                 namespace["CLS"] = self._class_of(type_name)
                 found = _compile(source, "decode", namespace)
                 self._decoders[key] = found
         return found
 
-    def _namespace(self, spec: s.MessageSpec, order: str) -> dict[str, Any]:
+    def _namespace(self, spec: s.MessageSpec, order: str, encode: bool) -> dict[str, Any]:
         namespace: dict[str, Any] = {
             "array": array.array,
             "numpy": numpy,
@@ -135,25 +140,12 @@ class CodecFunctions:
         }
         for ref in s.referenced_types(spec):
             key = _function_name(ref)
-            namespace["enc_" + key] = _Later(functools.partial(self.encoder, ref))
-            namespace["dec_" + key] = _Later(functools.partial(self.decoder, ref, order))
+            # nested types first (a message never contains itself, at any depth)
+            if encode:
+                namespace["enc_" + key] = self.encoder(ref)
+            else:
+                namespace["dec_" + key] = self.decoder(ref, order)
         return namespace
-
-
-class _Later:
-    """A nested type's function, looked up on its first call (types may be generated in any
-    order, and a type's functions are only made when a message of it is met)."""
-
-    __slots__ = ("_find", "_found")
-
-    def __init__(self, find: Callable[[], Callable[..., Any]]) -> None:
-        self._find = find
-        self._found: Callable[..., Any] | None = None
-
-    def __call__(self, *args: Any) -> Any:
-        if self._found is None:
-            self._found = self._find()
-        return self._found(*args)
 
 
 def _compile(source: str, name: str, namespace: dict[str, Any]) -> Any:

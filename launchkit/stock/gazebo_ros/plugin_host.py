@@ -51,13 +51,13 @@ PLUGIN_MESSAGES = (
 def warm_plugins() -> None:
     """After the fork, in the host (beside the server's world load): what only the plugin
     nodes use, their modules and their message types' codecs."""
-    from launchkit.ros.msgs._codec import codec
+    from launchkit.ros.msgs import codec
     from launchkit.stock.gazebo_ros import messages
 
     for module in PLUGIN_MODULES:
         importlib.import_module(module)
     for package, name in PLUGIN_MESSAGES:
-        codec(messages.message_class(package, name).__msgtype__)
+        codec(messages.message_class(package, name)._TYPE_NAME)
 
 
 @dataclass
