@@ -6,9 +6,8 @@ rclpy's do: no conversion element by element), fixed-size arrays as lists.
 
 from __future__ import annotations
 
-from typing import Any
-
 import array
+from typing import Any
 
 from launchkit.stock.gazebo_ros.sim.diff_drive import Odometry
 from launchkit.stock.gazebo_ros.sim.sensors import CameraConfig, LidarConfig
