@@ -18,8 +18,6 @@ from collections.abc import Callable
 from copy import copy
 from typing import Any, ClassVar
 
-import numpy
-
 from launchkit.ros.msgs import _spec as s
 from launchkit.ros.msgs import definition as d
 from launchkit.ros.msgs._fields import (
@@ -33,7 +31,6 @@ from launchkit.ros.msgs._fields import (
 #: rosidl reads this once, when a message module is imported; so does launchkit.
 CHECK_FIELDS = os.environ.get("ROS_PYTHON_CHECK_FIELDS", "") == "1"
 
-_PLAIN, _SEQUENCE, _ARRAY = 0, 1, 2
 _ARRAY_PREFIX = "array('X', "
 
 
@@ -42,7 +39,7 @@ class MessageMeta(type):
     ``isinstance(cls, MessageMeta)`` tells a launchkit message class."""
 
     _TYPE_NAME: str
-    _LK_FIELDS: tuple[tuple[str, Callable[[], Any], int, Any], ...]
+    _LK_FIELDS: tuple[tuple[str, Callable[[], Any], str | None], ...]
     _LK_NUMPY: frozenset[str]
 
 
@@ -174,15 +171,15 @@ def _class_doc(short: str, constants: list[str]) -> str:
 
 def _init_entry(
     field: s.Field, idl: d.AbstractType, class_of: ClassOf
-) -> tuple[str, Callable[[], Any], int, Any]:
-    """How the constructor sets a field: name, default factory, kind and its detail."""
+) -> tuple[str, Callable[[], Any], str | None]:
+    """How the constructor sets a field: name, default factory, and the ``array`` type code
+    of a numeric sequence without a ``.msg`` default (rosidl converts those before the
+    setter sees them)."""
     special = s.special_typename(idl)
     make = default_factory(field, idl, class_of)
-    if special is None:
-        return (field.name, make, _PLAIN, None)
-    if isinstance(idl, d.Array):
-        return (field.name, make, _ARRAY, (numpy.dtype(s.DTYPE_NAMES[special]), idl.size))
-    return (field.name, make, _SEQUENCE, s.TYPE_CODES[special])
+    if special is None or field.has_default or not isinstance(idl, d.AbstractSequence):
+        return (field.name, make, None)
+    return (field.name, make, s.TYPE_CODES[special])
 
 
 def _init(self: Any, **kwargs: Any) -> None:
@@ -193,20 +190,15 @@ def _init(self: Any, **kwargs: Any) -> None:
         unknown = sorted(k for k in kwargs if "_" + k not in cls.__slots__)
         if unknown:
             raise AssertionError("Invalid arguments passed to constructor: " + ", ".join(unknown))
-    for name, make_default, kind, detail in cls._LK_FIELDS:
+    for name, make_default, code in cls._LK_FIELDS:
         if name not in kwargs:
             setattr(self, name, make_default())
-        elif kind == _PLAIN:
-            setattr(self, name, kwargs[name])
-        elif kind == _SEQUENCE:
-            # rosidl converts here, then in the setter; without checks one conversion is the same
+        elif code is not None:
+            # rosidl converts here and again in the setter: without checks, once is the same
             value = kwargs[name]
-            setattr(self, name, array.array(detail, value) if check else value)
+            setattr(self, name, array.array(code, value) if check else value)
         else:
-            dtype, size = detail
-            setattr(self, name, numpy.array(kwargs[name], dtype=dtype))
-            if getattr(self, name).shape != (size,):
-                raise AssertionError
+            setattr(self, name, kwargs[name])
 
 
 def _repr(self: Any) -> str:
@@ -235,8 +227,7 @@ def _eq(self: Any, other: Any) -> bool:
     numpy_fields = type(self)._LK_NUMPY
     for name in type(self)._fields_and_field_types:
         if name in numpy_fields:
-            # rosidl's comparison of fixed-size numeric arrays: unequal only if every element is
-            if all(getattr(self, name) != getattr(other, name)):
+            if any(getattr(self, name) != getattr(other, name)):
                 return False
         elif getattr(self, name) != getattr(other, name):
             return False

@@ -331,8 +331,9 @@ class _DecoderWriter(_Writer):
         if self.group_format:
             fmt = self.order + "".join(self.group_format)
             size = struct.calcsize(fmt)
-            targets = ", ".join(self.group_targets)
-            self.lines.append(f"    ({targets},) = struct.unpack_from({fmt!r}, view, pos)")
+            if self.group_targets:
+                targets = ", ".join(self.group_targets)
+                self.lines.append(f"    ({targets},) = struct.unpack_from({fmt!r}, view, pos)")
             self.lines.append(f"    pos += {size}")
             self.group_format, self.group_targets = [], []
 

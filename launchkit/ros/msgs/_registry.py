@@ -43,7 +43,9 @@ class MessageTypeError(UserError):
 class Registry:
     """The process's interface types (one per process: :func:`registry`)."""
 
-    def __init__(self) -> None:
+    def __init__(self, index: Any = None) -> None:
+        """``index``: the package index to find packages in (default: one made from the
+        environment when first needed)."""
         self._lock = threading.RLock()
         self._specs: dict[str, _spec.MessageSpec] = {}
         self._services: set[str] = set()  # pkg/srv/Name and pkg/action/Name_SendGoal, ...
@@ -57,7 +59,7 @@ class Registry:
         self._classes: dict[str, Any] = {}
         self._codecs: dict[str, Codec] = {}
         self._jazzy: dict[str, Any] | None = None
-        self._index: Any = None
+        self._index: Any = index
         self._hashes: dict[str, str] = {}
         self._definitions = Typestore()  # rosbags' hash and .msg text, from our definitions
         self.functions = CodecFunctions(self.spec, self.message_class, _classes.CHECK_FIELDS)
