@@ -219,7 +219,7 @@ def _split(text: str, path: str, separators: int) -> list[tuple[str, int]]:
     at = [i for i, line in enumerate(lines) if line.rstrip("\r") == _SEPARATOR]
     if len(at) != separators:
         what = {0: "a message", 1: "a service", 2: "an action"}[separators]
-        line = at[separators] + 1 if len(at) > separators else len(lines)
+        line = at[separators] + 1 if len(at) > separators else 1
         raise InterfaceFileError(
             f"{len(at)} '---' separator lines in {what}",
             Location(path, line, 1),
