@@ -81,3 +81,14 @@ def test_packages_import_like_rclpy() -> None:
     assert Clock().clock.sec == 0
     with pytest.raises(ImportError):
         __import__("launchkit.ros.msgs.nope_msgs.msg")
+
+
+def test_an_action_feedback_topic_has_a_message_definition() -> None:
+    from rosbags.typesys import get_types_from_msg
+
+    from launchkit.ros.msgs import message_definition
+
+    name = "example_interfaces/action/Fibonacci_FeedbackMessage"
+    types = get_types_from_msg(message_definition(name), "example_interfaces/msg/Feedback")
+    assert [f for f, _ in types["example_interfaces/msg/Feedback"][1]] == ["goal_id", "feedback"]
+    assert "unique_identifier_msgs/msg/UUID" in types

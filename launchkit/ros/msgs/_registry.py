@@ -333,10 +333,20 @@ class Registry:
         return found
 
     def message_definition(self, name: str) -> str:
-        """The ``.msg`` text of a message type with its dependencies (for MCAP and Foxglove)."""
+        """The ``.msg`` text of a message type with its dependencies (for MCAP and Foxglove).
+
+        rosbags writes ``.msg`` text for ``pkg/msg/`` types only; a service's or action's part
+        (an action's ``_FeedbackMessage`` topic) is written with its types named
+        ``pkg/msg/...``, which describes the same fields and bytes."""
         with self._lock:
             self._define(name)
-            text, _ = self._definitions.generate_msgdef(name, ros_version=2)
+            store = self._definitions
+            if "/msg/" not in name:
+                store = Typestore()
+                for type_name, (consts, fields) in self._definitions.fielddefs.items():
+                    renamed = [(f, _spec.desc_renamed(d, _as_msg)) for f, d in fields]
+                    store.fielddefs[_as_msg(type_name)] = cast(Any, (consts, renamed))
+            text, _ = store.generate_msgdef(_as_msg(name), ros_version=2)
             return str(text)
 
     def _define(self, name: str) -> None:
@@ -349,6 +359,11 @@ class Registry:
             spec = self.spec(current)
             self._definitions.fielddefs[current] = cast(Any, spec.typesdict_entry())
             todo.extend(_spec.referenced_types(spec))
+
+
+def _as_msg(type_name: str) -> str:
+    pkg, _, short = type_name.split("/")
+    return f"{pkg}/msg/{short}"
 
 
 _registry: Registry | None = None

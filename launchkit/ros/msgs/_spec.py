@@ -12,6 +12,7 @@ rosidl's classes, hashes and bytes all see a ``uint8``.
 
 from __future__ import annotations
 
+from collections.abc import Callable
 from typing import Any, NamedTuple
 
 from launchkit.ros.msgs import definition as d
@@ -109,6 +110,16 @@ def desc_without_char(desc: Any) -> Any:
         return (BASE, ("uint8", detail[1]))
     if kind in (ARRAY, SEQUENCE):
         return (kind, (desc_without_char(detail[0]), detail[1]))
+    return desc
+
+
+def desc_renamed(desc: Any, rename: Callable[[str], str]) -> Any:
+    """``desc`` with every message type name passed through ``rename``."""
+    kind, detail = desc
+    if kind == NAME:
+        return (NAME, rename(detail))
+    if kind in (ARRAY, SEQUENCE):
+        return (kind, (desc_renamed(detail[0], rename), detail[1]))
     return desc
 
 
