@@ -24,7 +24,7 @@ from typing import Any, cast
 
 from rosbags.typesys.store import Typestore
 
-from launchkit.errors import Location, UserError
+from launchkit.errors import Location, PackageNotFoundError, UserError
 from launchkit.ros.msgs import _classes, _spec
 from launchkit.ros.msgs._builtin import DEFAULTS, INTERFACES
 from launchkit.ros.msgs._codec import Codec, CodecFunctions
@@ -61,6 +61,7 @@ class Registry:
         self._jazzy: dict[str, Any] | None = None
         self._index: Any = index
         self._hashes: dict[str, str] = {}
+        self._folders: dict[tuple[str, bool], Path | None] = {}
         self._definitions = Typestore()  # rosbags' hash and .msg text, from our definitions
         self.functions = CodecFunctions(self.spec, self.message_class, _classes.CHECK_FIELDS)
 
@@ -149,9 +150,14 @@ class Registry:
 
     def package_folder(self, pkg: str, registered: bool = True) -> Path | None:
         """The share directory of ``pkg`` if it has interface folders (``registered``: also
-        look at packages registered by Python distributions, which costs a first lookup)."""
-        from launchkit.errors import PackageNotFoundError
+        look at packages registered by Python distributions, which costs a first lookup).
+        Remembered: the import hook asks about every module a process imports."""
+        key = (pkg, registered)
+        if key not in self._folders:
+            self._folders[key] = self._interface_folder(pkg, registered)
+        return self._folders[key]
 
+    def _interface_folder(self, pkg: str, registered: bool) -> Path | None:
         index = self.index()
         try:
             found = index.find(pkg) if registered else index.ament_package(pkg)
