@@ -294,3 +294,27 @@ def test_the_import_hook_shadows_installed_message_packages(prefixes: str) -> No
         "True std_msgs.msg.String(data='hi')",
         "example_interfaces.srv.AddTwoInts_Request(a=1, b=2) 1.0 front",
     ]
+
+
+def test_the_cli_lists_and_shows_a_users_interfaces(prefixes: str) -> None:
+    env = {**os.environ, "AMENT_PREFIX_PATH": prefixes}
+
+    def launchkit(*args: str) -> list[str]:
+        done = subprocess.run(
+            [sys.executable, "-m", "launchkit", "interface", *args],
+            env=env,
+            capture_output=True,
+            text=True,
+            timeout=120,
+        )
+        assert done.returncode == 0, done.stderr
+        return done.stdout.splitlines()
+
+    listed = [line.strip() for line in launchkit("list")]
+    assert {"my_pkg/msg/Reading", "my_pkg/srv/Measure", "my_pkg/action/Move"} <= set(listed)
+    assert listed.index("my_pkg/action/Move") > listed.index("Actions:")
+    assert launchkit("show", "my_pkg/action/Move")[:3] == [
+        "float64 distance",
+        "---",
+        "float64 travelled",
+    ]

@@ -30,9 +30,14 @@ def normalize_type_name(name: str, kind: str = "msg") -> str:
     return "/".join(parts)
 
 
-def type_names(kind: str = "msg") -> list[str]:
-    """Every known type name of a kind (``msg``, ``srv`` or ``action``), sorted."""
-    return registry().names(kind)
+def type_names(kind: str = "msg", discover: bool = False) -> list[str]:
+    """Every known type name of a kind (``msg``, ``srv`` or ``action``), sorted: the built-in
+    ones and those of packages read so far; ``discover``: first read every package the package
+    index finds with interface folders (what ``launchkit interface list`` shows)."""
+    reg = registry()
+    if discover:
+        reg.names(kind, reg.discovered_packages())  # reads their files
+    return reg.names(kind)
 
 
 def packages() -> set[str]:

@@ -18,20 +18,8 @@ from launchkit.ros.msgs import _spec as s
 from launchkit.ros.msgs import definition as d
 
 NATIVE = "<" if sys.byteorder == "little" else ">"
-_STRUCT_CODES = {
-    "boolean": "?",
-    "octet": "c",
-    "int8": "b",
-    "uint8": "B",
-    "int16": "h",
-    "uint16": "H",
-    "int32": "i",
-    "uint32": "I",
-    "int64": "q",
-    "uint64": "Q",
-    "float": "f",
-    "double": "d",
-}
+# struct's codes are array's type codes for numbers (and sizes agree for the standard sizes)
+_STRUCT_CODES = {**s.TYPE_CODES, "boolean": "?", "octet": "c"}
 
 
 def function_name(type_name: str) -> str:
@@ -41,13 +29,54 @@ def function_name(type_name: str) -> str:
 
 class _Writer:
     """Writes a function's lines, knowing the payload offset modulo ``known`` as ``residue``
-    (``known == 1``: nothing known) so that padding is computed here where it can be."""
+    (``known == 1``: nothing known) so that padding is computed here where it can be.
+
+    Fixed-size fields gather in a group (``group_format``, one ``struct`` call) until
+    :meth:`flush`; ``DUMMY`` is what stands for rosidl's one-byte member of an empty type."""
+
+    DUMMY = ""
 
     def __init__(self, spec: s.MessageSpec) -> None:
         self.spec = spec
         self.lines: list[str] = []
         self.known, self.residue = 1, 0
         self.counter = 0
+        self.group_format: list[str] = []
+
+    def flush(self) -> None:
+        raise NotImplementedError
+
+    def pad_line(self, size: int) -> str:
+        """The line that pads to ``size`` when the offset is only known at run time."""
+        raise NotImplementedError
+
+    def scalar(self, idl: d.AbstractType, name: str, indent: str) -> None:
+        raise NotImplementedError
+
+    def nested(self, idl: d.AbstractNestedType, name: str) -> None:
+        raise NotImplementedError
+
+    def align(self, size: int) -> None:
+        """Pad to ``size`` (into the current group when the padding is known now)."""
+        if size <= self.known:
+            pad = -self.residue % size
+            if pad:
+                self.group_format.append(f"{pad}x")
+                self.advance(pad)
+            return
+        self.flush()
+        self.lines.append(self.pad_line(size))
+        self.known, self.residue = size, 0
+
+    def field(self, field: s.Field) -> None:
+        name = f"msg._{field.name}"
+        if field.name == d.EMPTY_STRUCTURE_REQUIRED_MEMBER_NAME:
+            name = self.DUMMY
+        idl = s.idl_type(field.desc)
+        if isinstance(idl, d.AbstractNestedType):
+            self.nested(idl, name)
+        else:
+            self.scalar(idl, name, "    ")
 
     def unknown(self) -> None:
         self.known, self.residue = 1, 0
@@ -63,9 +92,10 @@ class _Writer:
 class EncoderWriter(_Writer):
     """The source of ``encode(out, msg)``; the payload offset is ``len(out) - 4``."""
 
+    DUMMY = "0"
+
     def __init__(self, spec: s.MessageSpec) -> None:
         super().__init__(spec)
-        self.group_format: list[str] = []
         self.group_values: list[str] = []
 
     def source(self) -> str:
@@ -82,27 +112,8 @@ class EncoderWriter(_Writer):
             self.lines.append(f"    out += struct.pack({fmt!r}, {', '.join(self.group_values)})")
             self.group_format, self.group_values = [], []
 
-    def align(self, size: int) -> None:
-        """Pad to ``size`` (into the current group when the padding is known now)."""
-        if size <= self.known:
-            pad = -self.residue % size
-            if pad:
-                self.group_format.append(f"{pad}x")
-                self.advance(pad)
-            return
-        self.flush()
-        self.lines.append(f"    out += ZERO[:(4 - len(out)) % {size}]")
-        self.known, self.residue = size, 0
-
-    def field(self, field: s.Field) -> None:
-        value = f"msg._{field.name}"
-        if field.name == d.EMPTY_STRUCTURE_REQUIRED_MEMBER_NAME:
-            value = "0"
-        idl = s.idl_type(field.desc)
-        if isinstance(idl, d.AbstractNestedType):
-            self.nested(idl, value)
-        else:
-            self.scalar(idl, value, "    ")
+    def pad_line(self, size: int) -> str:
+        return f"    out += ZERO[:(4 - len(out)) % {size}]"
 
     def scalar(self, idl: d.AbstractType, value: str, indent: str) -> None:
         if isinstance(idl, d.BasicType):
@@ -181,10 +192,11 @@ class EncoderWriter(_Writer):
 class DecoderWriter(_Writer):
     """The source of ``decode(view, pos) -> (msg, pos)`` for one byte order."""
 
+    DUMMY = "_"
+
     def __init__(self, spec: s.MessageSpec, order: str) -> None:
         super().__init__(spec)
         self.order = order
-        self.group_format: list[str] = []
         self.group_targets: list[str] = []
 
     def source(self) -> str:
@@ -207,26 +219,8 @@ class DecoderWriter(_Writer):
             self.lines.append(f"    pos += {size}")
             self.group_format, self.group_targets = [], []
 
-    def align(self, size: int) -> None:
-        if size <= self.known:
-            pad = -self.residue % size
-            if pad:
-                self.group_format.append(f"{pad}x")
-                self.advance(pad)
-            return
-        self.flush()
-        self.lines.append(f"    pos += -pos % {size}")
-        self.known, self.residue = size, 0
-
-    def field(self, field: s.Field) -> None:
-        target = f"msg._{field.name}"
-        if field.name == d.EMPTY_STRUCTURE_REQUIRED_MEMBER_NAME:
-            target = "_"
-        idl = s.idl_type(field.desc)
-        if isinstance(idl, d.AbstractNestedType):
-            self.nested(idl, target)
-        else:
-            self.scalar(idl, target, "    ")
+    def pad_line(self, size: int) -> str:
+        return f"    pos += -pos % {size}"
 
     def scalar(self, idl: d.AbstractType, target: str, indent: str) -> None:
         """Read one value into ``target`` (inside a loop: ``indent`` is deeper)."""

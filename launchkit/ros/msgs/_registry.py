@@ -248,6 +248,11 @@ class Registry:
                 found = {n for n in found if n.split("/", 1)[0] in packages}
             return sorted(found)
 
+    def discovered_packages(self) -> set[str]:
+        """Every package of the package index with interface folders (not built in)."""
+        names = set(self.index().names()) - self.builtin_packages()
+        return {pkg for pkg in names if self.package_folder(pkg) is not None}
+
     def interface_members(self, interface: str) -> list[str]:
         """The types an interface file defines: ``pkg/srv/Name``, its ``_Request``, ...
         (an action: its parts and its two services)."""
