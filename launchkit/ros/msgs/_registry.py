@@ -88,7 +88,7 @@ class Registry:
         with self._lock:
             try:
                 self._find(name)
-            except KeyError:
+            except (KeyError, ValueError):
                 return False
             return name in self._specs
 
