@@ -1,4 +1,4 @@
-"""Helpers for the ROS layer's tests: free ports, child node processes, spinning with deadlines.
+"""Helpers for the ROS layer's tests: child node processes, spinning with deadlines.
 
 A uniquely named module (not ``conftest``) so that tests can import it whatever other
 ``conftest.py`` files the suite has.
@@ -8,7 +8,6 @@ from __future__ import annotations
 
 import os
 import queue
-import socket
 import subprocess
 import sys
 import threading
@@ -19,13 +18,6 @@ from pathlib import Path
 from launchkit.ros import Node, spin_once
 
 NODES_DIR = Path(__file__).parent / "nodes"
-
-
-def free_port() -> int:
-    """A TCP port on loopback that nothing listens on right now."""
-    with socket.socket() as sock:
-        sock.bind(("127.0.0.1", 0))
-        return int(sock.getsockname()[1])
 
 
 class Child:
