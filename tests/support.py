@@ -1,14 +1,19 @@
-"""Helpers shared by tests of several folders: a router hosted by the test process, and a
-poll with a deadline for conditions that no event announces.
+"""Helpers shared by tests of several folders: a router hosted by the test process, a poll
+with a deadline for conditions that no event announces, the output lines of a child process
+read as they come, and ROS-style packages in an install prefix.
 
 (``launchkit.testing._isolation`` has the free loopback port and the router endpoint for it.)
 """
 
 from __future__ import annotations
 
+import queue
+import threading
 import time
-from collections.abc import Callable, Iterator
+from collections.abc import Callable, Iterator, Mapping
 from contextlib import contextmanager
+from pathlib import Path
+from typing import IO
 
 from launchkit.testing._isolation import free_loopback_port, router_endpoint
 
@@ -37,3 +42,74 @@ def wait_until(
         if time.monotonic() > deadline:
             raise AssertionError(f"timed out after {timeout} s waiting for {what}")
         time.sleep(every)
+
+
+class OutputLines:
+    """The lines of a child's output stream, read by a thread of their own as they come. Take
+    the next one that a test wants (waiting for it), or all that came so far; every line taken
+    is kept in :attr:`seen`, for assertions and failure messages."""
+
+    def __init__(self, stream: IO[str]) -> None:
+        self.seen: list[str] = []
+        self._queue: queue.Queue[str] = queue.Queue()
+        self._reader = threading.Thread(target=self._pump, args=(stream,), daemon=True)
+        self._reader.start()
+
+    def _pump(self, stream: IO[str]) -> None:
+        try:
+            for line in stream:
+                self._queue.put(line.rstrip("\n"))
+        except (OSError, ValueError):
+            pass  # the stream was closed under the reader (a test's cleanup)
+
+    def next(self, wanted: Callable[[str], object], timeout: float) -> str | None:
+        """The next line for which ``wanted(line)`` is true (the lines before it are passed
+        over), or None when none came within ``timeout`` seconds."""
+        deadline = time.monotonic() + timeout
+        while (remaining := deadline - time.monotonic()) > 0:
+            try:
+                line = self._queue.get(timeout=min(remaining, 0.2))
+            except queue.Empty:
+                continue
+            self.seen.append(line)
+            if wanted(line):
+                return line
+        return None
+
+    def drain(self) -> list[str]:
+        """The lines that came and were not taken yet (taken now)."""
+        taken = []
+        while not self._queue.empty():
+            taken.append(self._queue.get())
+        self.seen.extend(taken)
+        return taken
+
+    def join(self, timeout: float = 5.0) -> None:
+        """Wait for the stream's end (the process closed it) up to ``timeout`` seconds."""
+        self._reader.join(timeout)
+
+
+def ament_package(
+    prefix: Path,
+    name: str,
+    executables: Mapping[str, str] | None = None,
+    files: Mapping[str, str] | None = None,
+) -> Path:
+    """Package ``name`` in the ROS-style install prefix ``prefix`` (what AMENT_PREFIX_PATH
+    lists), laid out as colcon lays it out: its marker in the ament index, its share folder with
+    ``files`` (relative path: text), and ``executables`` (name: script) in ``lib/NAME``. The
+    prefix."""
+    index = prefix / "share" / "ament_index" / "resource_index" / "packages"
+    index.mkdir(parents=True, exist_ok=True)
+    (index / name).touch()
+    share = prefix / "share" / name
+    share.mkdir(parents=True, exist_ok=True)
+    for relative, text in (files or {}).items():
+        (share / relative).parent.mkdir(parents=True, exist_ok=True)
+        (share / relative).write_text(text)
+    lib = prefix / "lib" / name
+    lib.mkdir(parents=True, exist_ok=True)
+    for executable, script in (executables or {}).items():
+        (lib / executable).write_text(script)
+        (lib / executable).chmod(0o755)
+    return prefix

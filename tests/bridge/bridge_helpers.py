@@ -23,7 +23,32 @@ DDS_ENV = {"ROS_AUTOMATIC_DISCOVERY_RANGE": "LOCALHOST"}
 RCLPY_MISSING = "the real rclpy is not installed: its wheels need CPython 3.11 on Linux x86_64"
 
 
-class DdsPeer:
+class _SpunNode:
+    """A node spun by an executor in a thread of its own (the peers below)."""
+
+    node: Any
+
+    def _spin_in_a_thread(self, executor: Any) -> None:
+        self._executor = executor
+        executor.add_node(self.node)
+        self._stop = threading.Event()
+        self._thread = threading.Thread(target=self._spin, daemon=True)
+        self._thread.start()
+
+    def _spin(self) -> None:
+        while not self._stop.is_set():
+            self._executor.spin_once(timeout_sec=0.05)
+
+    def _stop_spinning(self) -> None:
+        self._stop.set()
+        self._thread.join(timeout=5)
+
+    def topics(self) -> dict[str, list[str]]:
+        """The topics and types of the node's graph (its own included)."""
+        return dict(self.node.get_topic_names_and_types())
+
+
+class DdsPeer(_SpunNode):
     """A real rclpy node (Fast DDS) in the test process, spun in a thread."""
 
     def __init__(self, domain_id: int, name: str = "dds_peer") -> None:
@@ -39,54 +64,28 @@ class DdsPeer:
             signal_handler_options=SignalHandlerOptions.NO,
         )
         self.node = rclpy.create_node(name, context=self.context)
-        self._executor = MultiThreadedExecutor(num_threads=2, context=self.context)
-        self._executor.add_node(self.node)
-        self._stop = threading.Event()
-        self._thread = threading.Thread(target=self._spin, daemon=True)
-        self._thread.start()
-
-    def _spin(self) -> None:
-        while not self._stop.is_set():
-            self._executor.spin_once(timeout_sec=0.05)
-
-    def topics(self) -> dict[str, list[str]]:
-        """The DDS graph's topics and types."""
-        return dict(self.node.get_topic_names_and_types())
+        self._spin_in_a_thread(MultiThreadedExecutor(num_threads=2, context=self.context))
 
     def close(self) -> None:
         """Stop spinning and shut the rclpy context down."""
-        self._stop.set()
-        self._thread.join(timeout=5)
+        self._stop_spinning()
         self._executor.shutdown(timeout_sec=1.0)
         self.node.destroy_node()
         self.context.try_shutdown()
 
 
-class LaunchkitPeer:
+class LaunchkitPeer(_SpunNode):
     """A launchkit node on the test's router, spun in a thread."""
 
     def __init__(self, router: str, domain_id: int, name: str = "lk_peer") -> None:
         self.context = ros.Context(router=router)
         self.context.init([], domain_id)
         self.node = ros.Node(name, context=self.context)
-        self._executor = ros.Executor(context=self.context)
-        self._executor.add_node(self.node)
-        self._stop = threading.Event()
-        self._thread = threading.Thread(target=self._spin, daemon=True)
-        self._thread.start()
-
-    def _spin(self) -> None:
-        while not self._stop.is_set():
-            self._executor.spin_once(timeout_sec=0.05)
-
-    def topics(self) -> dict[str, list[str]]:
-        """launchkit's graph's topics and types (the node's own included)."""
-        return dict(self.node.get_topic_names_and_types())
+        self._spin_in_a_thread(ros.Executor(context=self.context))
 
     def close(self) -> None:
         """Stop spinning and close the session."""
-        self._stop.set()
-        self._thread.join(timeout=5)
+        self._stop_spinning()
         self.context.shutdown()
 
 

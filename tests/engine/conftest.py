@@ -1,11 +1,14 @@
-"""Fixtures for the engine tests that drive ``launchkit run`` directly (see launcher.py)."""
+"""Fixtures for the engine tests: ``launchkit run`` driven directly (see launcher.py), and a
+package index with one Python package for the parse-level tests of ``<node>``."""
 
 from __future__ import annotations
 
+from collections.abc import Callable, Iterator
 from pathlib import Path
 
 import pytest
 
+from launchkit.packages import PackageIndex, PythonPackage
 from tests.engine.launcher import Launcher, wait_gone
 
 
@@ -17,14 +20,14 @@ def write(tmp_path: Path, body: str, name: str = "t.launch.xml") -> Path:
 
 
 @pytest.fixture
-def run(tmp_path: Path):  # type: ignore[no-untyped-def]
-    """Start ``launchkit run`` on a launch file body; everything is killed at the end."""
+def launchers(tmp_path: Path) -> Iterator[Callable[..., Launcher]]:
+    """Start ``launchkit run FILE ARGS`` in the test's folder, logging there (``env`` adds to
+    the test's environment); every launcher, and what it said it started, is killed at the end."""
     started: list[Launcher] = []
 
-    def start(body: str, *args: str) -> Launcher:
-        launcher = Launcher(
-            str(write(tmp_path, body)), *args, cwd=tmp_path, env={"ROS_LOG_DIR": str(tmp_path)}
-        )
+    def start(path: Path, *args: str, env: dict[str, str] | None = None) -> Launcher:
+        environment = {"ROS_LOG_DIR": str(tmp_path), **(env or {})}
+        launcher = Launcher(str(path), *args, cwd=tmp_path, env=environment)
         started.append(launcher)
         return launcher
 
@@ -34,3 +37,36 @@ def run(tmp_path: Path):  # type: ignore[no-untyped-def]
             launcher.kill()
         launcher.close()
         wait_gone(list(launcher.pids.values()))
+
+
+@pytest.fixture
+def run(tmp_path: Path, launchers: Callable[..., Launcher]) -> Callable[..., Launcher]:
+    """Start ``launchkit run`` on a launch file body (see ``launchers``)."""
+
+    def start(body: str, *args: str) -> Launcher:
+        return launchers(write(tmp_path, body), *args)
+
+    return start
+
+
+@pytest.fixture
+def packages(tmp_path: Path) -> PackageIndex:
+    """One Python package ``demo`` with a ``talker`` executable."""
+    share = tmp_path / "demo_share"
+    share.mkdir()
+    return PackageIndex(
+        ament_prefix_path="",
+        python_packages={"demo": PythonPackage("demo", share, {"talker": "demo.talker"})},
+    )
+
+
+def ros_args(cmd: list[str]) -> list[str]:
+    """What follows ``--ros-args`` on a node's command line."""
+    return cmd[cmd.index("--ros-args") + 1 :]
+
+
+def params_file(path: Path, *lines: str) -> Path:
+    """A ROS params file at ``path`` giving every node (``/**``) the parameters ``lines``
+    (``"rate: 5.0"``, written as they are)."""
+    path.write_text("/**:\n  ros__parameters:\n" + "".join(f"    {line}\n" for line in lines))
+    return path

@@ -169,3 +169,16 @@ def executable(name: str, code: str, **attrs: str) -> str:
         f'<executable name="{name}" output="screen" {extra} '
         f"cmd=\"{sys.executable} -c '{escaped}'\"/>"
     )
+
+
+def run_rejected(path: Path, prologue: str, body: str) -> tuple[str, str]:
+    """Write ``prologue`` and ``body`` to ``path`` (``{marker}`` in the prologue names a file that
+    a process it starts makes) and run ``launchkit run`` on it, which must refuse the file: exit
+    status 2, no traceback, nothing started. Its first line on stderr, and the whole of stderr."""
+    marker = path.parent / "started"
+    path.write_text(prologue.format(marker=marker) + body)
+    result = run_launchkit("run", str(path), cwd=path.parent)
+    assert result.returncode == 2, result.stderr
+    assert "Traceback" not in result.stderr + result.stdout
+    assert not marker.exists(), "a process started although the file is bad"
+    return result.stderr.splitlines()[0], result.stderr

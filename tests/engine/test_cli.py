@@ -10,6 +10,7 @@ from pathlib import Path
 import pytest
 
 from tests.engine.launcher import run_launchkit as launchkit
+from tests.support import ament_package
 
 
 def test_check_only_validates(tmp_path: Path) -> None:
@@ -213,19 +214,12 @@ def test_pkg_commands_know_the_robot_package(tmp_path: Path) -> None:
 @pytest.fixture
 def ament_prefix(tmp_path: Path) -> Path:
     """An AMENT_PREFIX_PATH prefix with package ``amentpkg``: a launch file and an executable."""
-    prefix = tmp_path / "install"
-    index = prefix / "share" / "ament_index" / "resource_index" / "packages"
-    index.mkdir(parents=True)
-    (index / "amentpkg").touch()
-    launch = prefix / "share" / "amentpkg" / "launch"
-    launch.mkdir(parents=True)
-    (launch / "hello.launch.xml").write_text('<launch><log message="from ament"/></launch>')
-    (launch / "only_here.launch.xml").write_text('<launch><log message="only here"/></launch>')
-    tool = prefix / "lib" / "amentpkg" / "tool"
-    tool.parent.mkdir(parents=True)
-    tool.write_text('#!/bin/sh\necho tool ran with "$@"\n')
-    tool.chmod(0o755)
-    return prefix
+    launches = {
+        "launch/hello.launch.xml": '<launch><log message="from ament"/></launch>',
+        "launch/only_here.launch.xml": '<launch><log message="only here"/></launch>',
+    }
+    tool = '#!/bin/sh\necho tool ran with "$@"\n'
+    return ament_package(tmp_path / "install", "amentpkg", {"tool": tool}, launches)
 
 
 def test_run_pkg_file_from_ament_prefix(tmp_path: Path, ament_prefix: Path) -> None:

@@ -4,15 +4,15 @@ containers through composition_interfaces/srv/LoadNode, as launch_ros does."""
 from __future__ import annotations
 
 import os
-import stat
 import sys
-from collections.abc import Callable, Iterator
+from collections.abc import Callable
 from pathlib import Path
 
 import pytest
 
 from launchkit.testing._isolation import domain_id, free_loopback_port, router_endpoint
-from tests.engine.launcher import Launcher, wait_gone
+from tests.engine.launcher import Launcher
+from tests.support import ament_package
 
 LIFECYCLE_TALKER = """
 import sys
@@ -105,9 +105,8 @@ def generate_launch_description():
 
 
 @pytest.fixture
-def start(tmp_path: Path) -> Iterator[Callable[..., Launcher]]:
+def start(tmp_path: Path, launchers: Callable[..., Launcher]) -> Callable[..., Launcher]:
     """``launchkit run`` on a Python launch file, on a router and domain of its own."""
-    started: list[Launcher] = []
 
     def run(code: str, env: dict[str, str] | None = None) -> Launcher:
         path = tmp_path / "managed.launch.py"
@@ -115,18 +114,10 @@ def start(tmp_path: Path) -> Iterator[Callable[..., Launcher]]:
         isolation = {
             "LAUNCHKIT_ROUTER": router_endpoint(free_loopback_port()),
             "ROS_DOMAIN_ID": str(domain_id()),
-            "ROS_LOG_DIR": str(tmp_path),
         }
-        launcher = Launcher(str(path), cwd=tmp_path, env={**isolation, **(env or {})})
-        started.append(launcher)
-        return launcher
+        return launchers(path, env={**isolation, **(env or {})})
 
-    yield run
-    for launcher in started:
-        if launcher.proc.poll() is None:
-            launcher.kill()
-        launcher.close()
-        wait_gone(list(launcher.pids.values()))
+    return run
 
 
 def test_lifecycle_nodes_follow_launch_events(
@@ -177,16 +168,12 @@ def test_a_ros_package_container_is_loaded_through_its_service(
 ) -> None:
     # An AMENT_PREFIX_PATH package whose container executable is a program of its own (here a
     # script running launchkit's container): launchkit starts it and loads over LoadNode.
-    prefix = tmp_path / "install"
-    (prefix / "share" / "ament_index" / "resource_index" / "packages").mkdir(parents=True)
-    (prefix / "share" / "ament_index" / "resource_index" / "packages" / "my_components").touch()
-    (prefix / "share" / "my_components").mkdir()
-    program = prefix / "lib" / "my_components" / "component_container"
-    program.parent.mkdir(parents=True)
-    program.write_text(
+    container = (
         f'#!/bin/sh\nexec {sys.executable} -m launchkit.stock.rclcpp_components.container "$@"\n'
     )
-    program.chmod(program.stat().st_mode | stat.S_IEXEC)
+    prefix = ament_package(
+        tmp_path / "install", "my_components", {"component_container": container}
+    )
     env = {
         "AMENT_PREFIX_PATH": os.pathsep.join([str(prefix), os.environ.get("AMENT_PREFIX_PATH", "")])
     }

@@ -25,6 +25,7 @@ import yaml
 
 from launchkit.packages import PackageIndex
 from tests.conftest import EvaluateXml
+from tests.support import ament_package
 
 STUB = """#!/usr/bin/env python3
 import json, sys
@@ -167,14 +168,7 @@ def normalized(argv: list[str], files: dict[str, str], given: Path) -> tuple[lis
 def ament(tmp_path: Path) -> tuple[PackageIndex, Path, Path]:
     """A ROS-style install prefix with package ``demo`` (its ``talker`` prints its argv), and a
     parameters file."""
-    prefix = tmp_path / "install"
-    (prefix / "share" / "ament_index" / "resource_index" / "packages").mkdir(parents=True)
-    (prefix / "share" / "ament_index" / "resource_index" / "packages" / "demo").touch()
-    (prefix / "share" / "demo").mkdir()
-    talker = prefix / "lib" / "demo" / "talker"
-    talker.parent.mkdir(parents=True)
-    talker.write_text(STUB)
-    talker.chmod(0o755)
+    prefix = ament_package(tmp_path / "install", "demo", {"talker": STUB})
     params = tmp_path / "p.yaml"
     params.write_text(FILE)
     return PackageIndex(ament_prefix_path=str(prefix), python_packages={}), prefix, params

@@ -4,26 +4,28 @@ the launcher being SIGKILLed are in test_supervision.py, which drives the launch
 
 from __future__ import annotations
 
+from collections.abc import Callable
 from pathlib import Path
 
-from launchkit.testing import in_order
+import pytest
+
+from launchkit.testing import LaunchFactory, LaunchHandle, in_order
+from tests.engine.conftest import write
 from tests.engine.launcher import executable
 
-
-def launch_file(tmp_path: Path, body: str) -> Path:
-    """A launch file holding ``body``."""
-    path = tmp_path / "t.launch.xml"
-    path.write_text(f"<launch>\n{body}\n</launch>\n")
-    return path
+Start = Callable[[str], LaunchHandle]
 
 
-def test_output_lines_and_exit_codes(launch, tmp_path: Path) -> None:  # type: ignore[no-untyped-def]
-    handle = launch(
-        launch_file(
-            tmp_path,
-            '<executable name="first" output="screen" cmd="echo one"/>\n'
-            '<executable name="second" output="screen" cmd="sh -c \'echo two; exit 3\'"/>',
-        )
+@pytest.fixture
+def start(launch: LaunchFactory, tmp_path: Path) -> Start:
+    """Launch, through the plugin, a launch file holding ``body``."""
+    return lambda body: launch(write(tmp_path, body))
+
+
+def test_output_lines_and_exit_codes(start: Start) -> None:
+    handle = start(
+        '<executable name="first" output="screen" cmd="echo one"/>\n'
+        '<executable name="second" output="screen" cmd="sh -c \'echo two; exit 3\'"/>',
     )
     second = handle.process("second")
     second.wait_output("two")
@@ -33,7 +35,7 @@ def test_output_lines_and_exit_codes(launch, tmp_path: Path) -> None:  # type: i
     handle.stop().assert_exit_codes({"first": 0, "second": 3})
 
 
-def test_ignoring_sigint_is_escalated(launch, tmp_path: Path) -> None:  # type: ignore[no-untyped-def]
+def test_ignoring_sigint_is_escalated(start: Start) -> None:
     ignore = "import signal, time; signal.signal(signal.SIGINT, signal.SIG_IGN); {x}"
     body = (
         executable(
@@ -51,21 +53,18 @@ def test_ignoring_sigint_is_escalated(launch, tmp_path: Path) -> None:  # type: 
             sigterm_timeout="0.3",
         )
     )
-    handle = launch(launch_file(tmp_path, body))
+    handle = start(body)
     handle.process("stubborn").wait_output("ready")
     handle.process("polite").wait_output("ready")
     result = handle.stop()
     result.assert_exit_codes({"stubborn": -9, "polite": -15})
 
 
-def test_respawn_obeys_delay_and_max_retries(launch, tmp_path: Path) -> None:  # type: ignore[no-untyped-def]
-    handle = launch(
-        launch_file(
-            tmp_path,
-            '<executable name="flaky" output="screen" respawn="true" respawn_delay="0.1" '
-            'respawn_max_retries="2" cmd="sh -c \'echo run; exit 1\'"/>\n'
-            '<executable name="keeper" cmd="sleep 30"/>',
-        )
+def test_respawn_obeys_delay_and_max_retries(start: Start) -> None:
+    handle = start(
+        '<executable name="flaky" output="screen" respawn="true" respawn_delay="0.1" '
+        'respawn_max_retries="2" cmd="sh -c \'echo run; exit 1\'"/>\n'
+        '<executable name="keeper" cmd="sleep 30"/>',
     )
     flaky = handle.process("flaky")
     flaky.wait_output(in_order("run", "run", "run"))
@@ -74,14 +73,11 @@ def test_respawn_obeys_delay_and_max_retries(launch, tmp_path: Path) -> None:  #
     assert result.output["flaky-1"].count("run") == 3
 
 
-def test_output_modes(launch, tmp_path: Path) -> None:  # type: ignore[no-untyped-def]
-    handle = launch(
-        launch_file(
-            tmp_path,
-            '<executable name="quiet" cmd="echo to-the-log"/>\n'
-            '<executable name="both" output="both" cmd="echo to-both"/>\n'
-            '<executable name="own" output="own_log" cmd="sh -c \'echo out; echo err >&amp;2\'"/>',
-        )
+def test_output_modes(start: Start) -> None:
+    handle = start(
+        '<executable name="quiet" cmd="echo to-the-log"/>\n'
+        '<executable name="both" output="both" cmd="echo to-both"/>\n'
+        '<executable name="own" output="own_log" cmd="sh -c \'echo out; echo err >&amp;2\'"/>',
     )
     handle.process("both").wait_output("to-both")
     for name in ("quiet", "both", "own"):
@@ -93,37 +89,28 @@ def test_output_modes(launch, tmp_path: Path) -> None:  # type: ignore[no-untype
     assert own and any("out" in text for text in own), sorted(logs)
 
 
-def test_timer_starts_a_process_later_in_its_scope(launch, tmp_path: Path) -> None:  # type: ignore[no-untyped-def]
-    handle = launch(
-        launch_file(
-            tmp_path,
-            '<group><let name="word" value="scoped"/>\n'
-            '<timer period="0.3"><executable name="late" output="screen" '
-            'cmd="echo $(var word)"/></timer></group>',
-        )
+def test_timer_starts_a_process_later_in_its_scope(start: Start) -> None:
+    handle = start(
+        '<group><let name="word" value="scoped"/>\n'
+        '<timer period="0.3"><executable name="late" output="screen" '
+        'cmd="echo $(var word)"/></timer></group>',
     )
     assert handle.process("late").wait_output("scoped", timeout=10) == "scoped"
 
 
-def test_emulate_tty(launch, tmp_path: Path) -> None:  # type: ignore[no-untyped-def]
+def test_emulate_tty(start: Start) -> None:
     probe = "import sys; print('tty' if sys.stdout.isatty() else 'pipe')"
-    handle = launch(
-        launch_file(
-            tmp_path,
-            executable("with", probe, emulate_tty="true") + "\n" + executable("without", probe),
-        )
+    handle = start(
+        executable("with", probe, emulate_tty="true") + "\n" + executable("without", probe),
     )
     assert handle.process("with").wait_output("tty") == "tty"
     assert handle.process("without").wait_output("pipe") == "pipe"
 
 
-def test_grandchildren_of_sh_are_stopped(launch, tmp_path: Path) -> None:  # type: ignore[no-untyped-def]
-    handle = launch(
-        launch_file(
-            tmp_path,
-            '<executable name="sh" output="screen" '
-            "cmd=\"sh -c 'sleep 300 &amp; echo grandchild $!; wait'\"/>",
-        )
+def test_grandchildren_of_sh_are_stopped(start: Start) -> None:
+    handle = start(
+        '<executable name="sh" output="screen" '
+        "cmd=\"sh -c 'sleep 300 &amp; echo grandchild $!; wait'\"/>",
     )
     handle.process("sh").wait_output("grandchild")
     handle.stop()  # the plugin fails the test if the grandchild survives

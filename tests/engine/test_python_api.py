@@ -13,6 +13,7 @@ from launchkit.errors import LaunchFileError, LaunchkitError
 from launchkit.frontend.python.modules import stand_in_modules
 from launchkit.packages import PackageIndex, PythonPackage
 from tests.conftest import EvaluateXml
+from tests.engine.conftest import params_file
 
 HEADER = """\
 import os
@@ -295,8 +296,7 @@ def test_a_program_called_by_bare_name_runs_the_stand_in(evaluate_xml: EvaluateX
 def test_ros_scope_actions_reach_the_node(
     evaluate_xml: EvaluateXml, demo: PackageIndex, tmp_path: Path
 ) -> None:
-    params = tmp_path / "all.yaml"
-    params.write_text("/**:\n  ros__parameters:\n    g: 2\n")
+    params = params_file(tmp_path / "all.yaml", "g: 2")
     body = f"""
         GroupAction([
             PushRosNamespace('robot1'),
@@ -317,8 +317,7 @@ def test_ros_scope_actions_reach_the_node(
 def test_parameter_typing_follows_launch_ros(
     evaluate_xml: EvaluateXml, demo: PackageIndex, tmp_path: Path
 ) -> None:
-    with_substs = tmp_path / "substs.yaml"
-    with_substs.write_text("/**:\n  ros__parameters:\n    who: $(var who)\n")
+    with_substs = params_file(tmp_path / "substs.yaml", "who: $(var who)")
     body = f"""
         Node(package='demo', executable='talker', parameters=[{{
             'as_text': '5',

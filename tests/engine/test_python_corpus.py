@@ -13,6 +13,7 @@ import pytest
 
 from launchkit import api
 from launchkit.runtime.recorder import Recorded
+from tests.support import ament_package
 
 CORPUS = Path(__file__).resolve().parents[1] / "corpus" / "python"
 
@@ -23,6 +24,7 @@ XACRO = (
 )
 
 #: package -> (executables, {share file: text}); a share file "launch/" links the corpus.
+PROGRAM = "#!/bin/sh\nexit 0\n"
 STUBS: dict[str, tuple[list[str], dict[str, str]]] = {
     "demo_nodes_cpp": (["talker", "listener"], {}),
     "lifecycle": (["lifecycle_talker", "lifecycle_listener", "lifecycle_service_client"], {}),
@@ -47,17 +49,8 @@ STUBS: dict[str, tuple[list[str], dict[str, str]]] = {
 def stub_packages(tmp_path_factory: pytest.TempPathFactory) -> Iterator[None]:
     """An ament prefix holding the stub packages, and a ``ros2`` program on the PATH."""
     prefix = tmp_path_factory.mktemp("corpus") / "install"
-    index = prefix / "share" / "ament_index" / "resource_index" / "packages"
-    index.mkdir(parents=True)
     for name, (executables, files) in STUBS.items():
-        (index / name).touch()
-        share = prefix / "share" / name
-        share.mkdir(parents=True)
-        for relative, text in files.items():
-            (share / relative).parent.mkdir(parents=True, exist_ok=True)
-            (share / relative).write_text(text)
-        for executable in executables:
-            _program(prefix / "lib" / name / executable)
+        ament_package(prefix, name, dict.fromkeys(executables, PROGRAM), files)
     (prefix / "share" / "nav2_bringup" / "launch").symlink_to(CORPUS)
     _program(prefix / "bin" / "ros2")
     saved = {k: os.environ.get(k) for k in ("AMENT_PREFIX_PATH", "PATH", "USER")}
@@ -76,7 +69,7 @@ def stub_packages(tmp_path_factory: pytest.TempPathFactory) -> Iterator[None]:
 
 def _program(path: Path) -> None:
     path.parent.mkdir(parents=True, exist_ok=True)
-    path.write_text("#!/bin/sh\nexit 0\n")
+    path.write_text(PROGRAM)
     path.chmod(path.stat().st_mode | stat.S_IEXEC)
 
 

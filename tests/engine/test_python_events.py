@@ -4,13 +4,13 @@ to, in ROS's order, with the event's details; OpaqueFunction failures name their
 from __future__ import annotations
 
 import sys
-from collections.abc import Callable, Iterator
+from collections.abc import Callable
 from pathlib import Path
 from typing import Any
 
 import pytest
 
-from tests.engine.launcher import Launcher, wait_gone
+from tests.engine.launcher import Launcher
 
 PY = sys.executable
 
@@ -53,23 +53,15 @@ def generate_launch_description():
 
 
 @pytest.fixture
-def launch_py(tmp_path: Path) -> Iterator[Callable[..., Launcher]]:
-    """Start ``launchkit run`` on a Python launch file; everything is killed at the end."""
-    started: list[Launcher] = []
+def launch_py(tmp_path: Path, launchers: Callable[..., Launcher]) -> Callable[..., Launcher]:
+    """Start ``launchkit run`` on a Python launch file (see ``launchers``)."""
 
     def start(code: str, *args: str) -> Launcher:
         path = tmp_path / "events.launch.py"
         path.write_text(code)
-        launcher = Launcher(str(path), *args, cwd=tmp_path, env={"ROS_LOG_DIR": str(tmp_path)})
-        started.append(launcher)
-        return launcher
+        return launchers(path, *args)
 
-    yield start
-    for launcher in started:
-        if launcher.proc.poll() is None:
-            launcher.kill()
-        launcher.close()
-        wait_gone(list(launcher.pids.values()))
+    return start
 
 
 def index_of(lines: list[str], text: str) -> int:
@@ -80,20 +72,28 @@ def index_of(lines: list[str], text: str) -> int:
     raise AssertionError(f"no line with {text!r} in:\n" + "\n".join(lines))
 
 
+def indices_of(lines: list[str], *texts: str) -> list[int]:
+    """The index of the first line containing each of ``texts``."""
+    return [index_of(lines, text) for text in texts]
+
+
 def test_handlers_react_in_order(launch_py: Callable[..., Launcher]) -> None:
     launcher = launch_py(EVENTS)
     assert launcher.finish() == 0
     lines = launcher.lines
-    started = index_of(lines, "[INFO] [worker-1]: process started")
-    on_start = index_of(lines, "[INFO] [launch.user]: worker started as worker-1")
-    said = index_of(lines, "[worker-1] hello")
-    heard = index_of(lines, "[INFO] [launch.user]: worker said hello")
-    died = index_of(lines, "[ERROR] [worker-1]: process has died")
-    on_exit = index_of(lines, "[INFO] [launch.user]: worker exited with 3")
-    shutdown = index_of(lines, "[INFO] [launch.user]: shutting down because the worker is done")
-    signal = index_of(lines, "sending signal 'SIGINT' to process[sleeper-2]")
-    sleeper = index_of(lines, "[INFO] [launch.user]: sleeper exited: -2")
-    order = [started, on_start, said, heard, died, on_exit, shutdown, signal, sleeper]
+    order = indices_of(
+        lines,
+        "[INFO] [worker-1]: process started",
+        "[INFO] [launch.user]: worker started as worker-1",
+        "[worker-1] hello",
+        "[INFO] [launch.user]: worker said hello",
+        "[ERROR] [worker-1]: process has died",
+        "[INFO] [launch.user]: worker exited with 3",
+        "[INFO] [launch.user]: shutting down because the worker is done",
+        "sending signal 'SIGINT' to process[sleeper-2]",
+        "[INFO] [launch.user]: sleeper exited: -2",
+    )
+    started, on_start, said, heard, died, on_exit, shutdown, signal, sleeper = order
     assert started < on_start and said < heard < died < on_exit < shutdown < signal < sleeper, (
         order,
         lines,
@@ -136,10 +136,13 @@ def generate_launch_description():
     launcher = launch_py(code)
     assert launcher.finish() == 0
     lines = launcher.lines
-    stopped = index_of(lines, "[INFO] [stopper-2]: process has finished cleanly")
-    signal = index_of(lines, "sending signal 'SIGINT' to process[sleeper-1]")
-    gone = index_of(lines, "[INFO] [launch.user]: sleeper is gone")
-    required = index_of(lines, "process[sleeper-1] was required: shutting down launched system")
+    stopped, signal, gone, required = indices_of(
+        lines,
+        "[INFO] [stopper-2]: process has finished cleanly",
+        "sending signal 'SIGINT' to process[sleeper-1]",
+        "[INFO] [launch.user]: sleeper is gone",
+        "process[sleeper-1] was required: shutting down launched system",
+    )
     assert stopped < signal < gone and signal < required
 
 

@@ -11,6 +11,8 @@ from launchkit.errors import LaunchFileError, LaunchkitError
 from launchkit.frontend.python import launch_api
 from launchkit.packages import PackageIndex, PythonPackage
 from tests.conftest import EvaluateXml
+from tests.engine.conftest import params_file
+from tests.support import ament_package
 
 GAZEBO_LIKE = """
 from launch import LaunchDescription
@@ -34,6 +36,18 @@ def generate_launch_description():
                 condition=IfCondition(LaunchConfiguration('verbose'))),
     ])
 """
+
+
+def error_line(
+    evaluate_xml: EvaluateXml, code: str, name: str, error: type[Exception], match: str
+) -> int:
+    """The line of the located ``error`` (its message matching ``match``) that evaluating
+    ``code``, a file called ``name``, raises."""
+    with pytest.raises(error, match=match) as caught:
+        evaluate_xml(code, name=name)
+    location = getattr(caught.value, "location", None)
+    assert location is not None, caught.value
+    return int(location.line)
 
 
 def test_declarations_processes_and_conditions(evaluate_xml: EvaluateXml) -> None:
@@ -99,16 +113,24 @@ def test_unsupported_api_names_file_and_line(evaluate_xml: EvaluateXml) -> None:
         "def generate_launch_description():\n"
         "    return LaunchDescription([OpaqueCoroutine(coroutine=print)])\n"
     )
-    with pytest.raises(LaunchFileError, match="OpaqueCoroutine is not supported") as caught:
-        evaluate_xml(code, name="opaque.launch.py")
-    assert caught.value.location is not None and caught.value.location.line == 5
+    assert (
+        error_line(
+            evaluate_xml,
+            code,
+            "opaque.launch.py",
+            LaunchFileError,
+            "OpaqueCoroutine is not supported",
+        )
+        == 5
+    )
 
 
 def test_a_broken_python_file_is_a_located_error(evaluate_xml: EvaluateXml) -> None:
     code = "from launch import LaunchDescription\n\ndef generate_launch_description():\n    1/0\n"
-    with pytest.raises(LaunchFileError, match="ZeroDivisionError") as caught:
-        evaluate_xml(code, name="broken.launch.py")
-    assert caught.value.location is not None and caught.value.location.line == 4
+    assert (
+        error_line(evaluate_xml, code, "broken.launch.py", LaunchFileError, "ZeroDivisionError")
+        == 4
+    )
 
 
 def test_unknown_import_is_a_clear_error(evaluate_xml: EvaluateXml) -> None:
@@ -136,9 +158,10 @@ def test_on_exit_shutdown(evaluate_xml: EvaluateXml) -> None:
     result = evaluate_xml(code, name="exit.launch.py")
     assert result.process("a").on_exit_shutdown and result.process("b").on_exit_shutdown
     bad = code.replace("on_exit=[Shutdown()]", "on_exit=[LogInfo(msg='bye'), 'x']")
-    with pytest.raises(LaunchFileError, match="on_exit holds a str") as caught:
-        evaluate_xml(bad, name="exit2.launch.py")
-    assert caught.value.location is not None and caught.value.location.line == 6
+    assert (
+        error_line(evaluate_xml, bad, "exit2.launch.py", LaunchFileError, "on_exit holds a str")
+        == 6
+    )
 
 
 def test_command_concatenates_its_parts(evaluate_xml: EvaluateXml, tmp_path: Path) -> None:
@@ -159,10 +182,7 @@ def test_command_concatenates_its_parts(evaluate_xml: EvaluateXml, tmp_path: Pat
 def test_ament_index_lookups(
     evaluate_xml: EvaluateXml, tmp_path: Path, monkeypatch: pytest.MonkeyPatch
 ) -> None:
-    prefix = tmp_path / "install"
-    (prefix / "share" / "ament_index" / "resource_index" / "packages").mkdir(parents=True)
-    (prefix / "share" / "ament_index" / "resource_index" / "packages" / "amentpkg").touch()
-    (prefix / "share" / "amentpkg").mkdir()
+    prefix = ament_package(tmp_path / "install", "amentpkg")
     monkeypatch.setenv("AMENT_PREFIX_PATH", str(prefix))
     code = (
         "from ament_index_python.packages import get_package_share_directory, get_package_prefix\n"
@@ -176,9 +196,7 @@ def test_ament_index_lookups(
         "        LogInfo(msg=get_package_prefix('nopkg')),\n"
         "    ])\n"
     )
-    with pytest.raises(LaunchkitError, match="nopkg") as caught:
-        evaluate_xml(code, name="ament.launch.py")
-    assert caught.value.location is not None and caught.value.location.line == 9
+    assert error_line(evaluate_xml, code, "ament.launch.py", LaunchkitError, "nopkg") == 9
     found = evaluate_xml(
         code.replace("        LogInfo(msg=get_package_prefix('nopkg')),\n", ""),
         name="ament2.launch.py",
@@ -190,8 +208,8 @@ def test_ament_index_lookups(
 def test_node_parameters_keep_their_order(evaluate_xml: EvaluateXml, tmp_path: Path) -> None:
     share = tmp_path / "share"
     share.mkdir()
-    (tmp_path / "a.yaml").write_text("/**:\n  ros__parameters:\n    rate: 5.0\n")
-    (tmp_path / "b.yaml").write_text("/**:\n  ros__parameters:\n    rate: 9.0\n")
+    params_file(tmp_path / "a.yaml", "rate: 5.0")
+    params_file(tmp_path / "b.yaml", "rate: 9.0")
     packages = PackageIndex(
         ament_prefix_path="",
         python_packages={"demo": PythonPackage("demo", share, {"talker": "demo.talker"})},

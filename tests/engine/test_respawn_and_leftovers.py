@@ -13,6 +13,7 @@ import uuid
 from pathlib import Path
 
 from tests.engine.launcher import alive, wait_gone
+from tests.support import ament_package
 
 
 def _survivors(token: str) -> list[int]:
@@ -104,18 +105,12 @@ def test_a_child_never_runs_before_the_orphan_guard_knows_its_group(tmp_path: Pa
 
 
 def test_sigkill_of_the_launcher_removes_its_temporary_files(run, tmp_path: Path) -> None:  # type: ignore[no-untyped-def]
-    prefix = tmp_path / "ament"
-    (prefix / "share" / "ament_index" / "resource_index" / "packages").mkdir(parents=True)
-    (prefix / "share" / "ament_index" / "resource_index" / "packages" / "fake").touch()
-    (prefix / "share" / "fake").mkdir()
-    (prefix / "lib" / "fake").mkdir(parents=True)
-    tool = prefix / "lib" / "fake" / "tool"
     # prints its parameters file, puts a file of its own in the launch's private folder
-    tool.write_text(
+    tool = (
         '#!/bin/sh\nwhile [ "$1" != --params-file ]; do shift; done\n'
         'touch "$LAUNCHKIT_RUN_TMPDIR/mine"\necho "params $2"\nexec sleep 300\n'
     )
-    tool.chmod(0o755)
+    prefix = ament_package(tmp_path / "ament", "fake", {"tool": tool})
     os.environ["AMENT_PREFIX_PATH"] = str(prefix)
     try:
         launcher = run(

@@ -9,24 +9,9 @@ import pytest
 import yaml
 
 from launchkit.errors import LaunchFileError
-from launchkit.packages import PackageIndex, PythonPackage
+from launchkit.packages import PackageIndex
 from tests.conftest import EvaluateXml
-
-
-@pytest.fixture
-def packages(tmp_path: Path) -> PackageIndex:
-    """One Python package ``demo`` with a ``talker`` executable."""
-    share = tmp_path / "demo_share"
-    share.mkdir()
-    return PackageIndex(
-        ament_prefix_path="",
-        python_packages={"demo": PythonPackage("demo", share, {"talker": "demo.talker"})},
-    )
-
-
-def ros_args(cmd: list[str]) -> list[str]:
-    """What follows ``--ros-args``."""
-    return cmd[cmd.index("--ros-args") + 1 :]
+from tests.engine.conftest import params_file, ros_args
 
 
 def params_files(cmd: list[str]) -> list[dict[str, object]]:
@@ -113,8 +98,8 @@ def test_parameters_keep_launch_ros_order_and_precedence(
     from launchkit.ros.arguments import parse_ros_args
     from launchkit.ros.params import overrides_for
 
-    (tmp_path / "rate.yaml").write_text("/**:\n  ros__parameters:\n    rate: 5.0\n    n: 1\n")
-    (tmp_path / "global.yaml").write_text("/**:\n  ros__parameters:\n    g: 0\n    n: 0\n")
+    params_file(tmp_path / "rate.yaml", "rate: 5.0", "n: 1")
+    params_file(tmp_path / "global.yaml", "g: 0", "n: 0")
     xml = f"""<launch>
       <arg name="rate" default="1.0"/>
       <set_parameter name="g" value="1"/>
@@ -159,8 +144,7 @@ def test_parameters_keep_launch_ros_order_and_precedence(
 def test_param_from_yaml_file(
     evaluate_xml: EvaluateXml, packages: PackageIndex, tmp_path: Path
 ) -> None:
-    params = tmp_path / "params.yaml"
-    params.write_text("/**:\n  ros__parameters:\n    a: 1\n")
+    params = params_file(tmp_path / "params.yaml", "a: 1")
     xml = f'<launch><node pkg="demo" exec="talker"><param from="{params}"/></node></launch>'
     spec = evaluate_xml(xml, packages=packages).processes[0]
     args = ros_args(spec.cmd)
@@ -216,8 +200,7 @@ def test_set_parameter_set_remap_and_use_sim_time(
 def test_set_parameters_from_file(
     evaluate_xml: EvaluateXml, packages: PackageIndex, tmp_path: Path
 ) -> None:
-    params = tmp_path / "global.yaml"
-    params.write_text("/**:\n  ros__parameters:\n    g: 2\n")
+    params = params_file(tmp_path / "global.yaml", "g: 2")
     xml = f"""<launch>
       <set_parameters_from_file filename="{params}"/>
       <node pkg="demo" exec="talker"/>

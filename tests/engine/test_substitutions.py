@@ -10,6 +10,7 @@ import pytest
 from launchkit.errors import LaunchFileError, LaunchkitError
 from launchkit.packages import PackageIndex, PythonPackage
 from tests.conftest import EvaluateXml
+from tests.support import ament_package
 
 
 def say(evaluate_xml: EvaluateXml, value: str, **kwargs: object) -> str:
@@ -112,14 +113,7 @@ def packages(tmp_path: Path) -> PackageIndex:
     """An index with one Python package and one AMENT_PREFIX_PATH package."""
     share = tmp_path / "py_pkg_share"
     share.mkdir()
-    prefix = tmp_path / "ament"
-    (prefix / "share" / "ament_index" / "resource_index" / "packages").mkdir(parents=True)
-    (prefix / "share" / "ament_index" / "resource_index" / "packages" / "amentpkg").touch()
-    (prefix / "share" / "amentpkg").mkdir()
-    (prefix / "lib" / "amentpkg").mkdir(parents=True)
-    tool = prefix / "lib" / "amentpkg" / "tool"
-    tool.write_text("#!/bin/sh\n")
-    tool.chmod(0o755)
+    prefix = ament_package(tmp_path / "ament", "amentpkg", {"tool": "#!/bin/sh\n"})
     return PackageIndex(
         python_packages={"py_pkg": PythonPackage("py_pkg", share, {"talker": "py_pkg.talker"})},
         ament_prefix_path=str(prefix),

@@ -11,6 +11,7 @@ from pathlib import Path
 import pytest
 
 from tests.engine.launcher import run_launchkit as launchkit
+from tests.support import ament_package
 
 CORPUS = Path(__file__).parents[1] / "corpus" / "yaml"
 
@@ -89,16 +90,8 @@ EXPECTED: dict[tuple[str, tuple[str, ...]], list[str | re.Pattern[str]]] = {
 def workspace(tmp_path_factory: pytest.TempPathFactory) -> Path:
     """An install prefix with a stub executable for each package launchkit does not ship."""
     prefix = tmp_path_factory.mktemp("stub_install")
-    index = prefix / "share" / "ament_index" / "resource_index" / "packages"
-    index.mkdir(parents=True)
     for package, executables in STUBS.items():
-        (index / package).touch()
-        (prefix / "share" / package).mkdir()
-        (prefix / "lib" / package).mkdir(parents=True)
-        for name in executables:
-            script = prefix / "lib" / package / name
-            script.write_text('#!/bin/sh\necho "$0 $*"\n')
-            script.chmod(0o755)
+        ament_package(prefix, package, dict.fromkeys(executables, '#!/bin/sh\necho "$0 $*"\n'))
     return prefix
 
 

@@ -14,8 +14,9 @@ import yaml
 
 from launchkit.errors import LaunchArgumentError, LaunchFileError
 from launchkit.frontend.launch_loader import LaunchLoader
-from launchkit.packages import PackageIndex, PythonPackage
+from launchkit.packages import PackageIndex
 from tests.conftest import Evaluated, EvaluateXml
+from tests.engine.conftest import params_file, ros_args
 
 
 @pytest.fixture
@@ -27,22 +28,6 @@ def evaluate_yaml(evaluate_xml: EvaluateXml) -> EvaluateXml:
         return evaluate_xml(text, *args, **kwargs)
 
     return evaluate
-
-
-@pytest.fixture
-def packages(tmp_path: Path) -> PackageIndex:
-    """One Python package ``demo`` with a ``talker`` executable."""
-    share = tmp_path / "demo_share"
-    share.mkdir()
-    return PackageIndex(
-        ament_prefix_path="",
-        python_packages={"demo": PythonPackage("demo", share, {"talker": "demo.talker"})},
-    )
-
-
-def ros_args(cmd: list[str]) -> list[str]:
-    """What follows ``--ros-args``."""
-    return cmd[cmd.index("--ros-args") + 1 :]
 
 
 def node_parameters(cmd: list[str]) -> dict[str, Any]:
@@ -405,8 +390,7 @@ launch:
 def test_param_from_file(
     evaluate_yaml: EvaluateXml, packages: PackageIndex, tmp_path: Path
 ) -> None:
-    params = tmp_path / "params.yaml"
-    params.write_text("/**:\n  ros__parameters:\n    a: $(var v)\n")
+    params = params_file(tmp_path / "params.yaml", "a: $(var v)")
     text = f"""
 launch:
 - let: {{name: v, value: '5'}}
@@ -425,8 +409,7 @@ launch:
 
 
 def test_ros_scope_tags(evaluate_yaml: EvaluateXml, packages: PackageIndex, tmp_path: Path) -> None:
-    params = tmp_path / "global.yaml"
-    params.write_text("/**:\n  ros__parameters:\n    g: 2\n")
+    params = params_file(tmp_path / "global.yaml", "g: 2")
     text = f"""
 launch:
 - group:

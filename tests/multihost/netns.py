@@ -11,15 +11,13 @@ from __future__ import annotations
 import atexit
 import itertools
 import os
-import queue
 import signal
 import subprocess
 import sys
-import threading
-import time
 from dataclasses import dataclass, field
 
 from tests.suite_env import PRIVATE_DEFAULTS
+from tests.support import OutputLines
 
 _counter = itertools.count()
 _alive: set[str] = set()
@@ -52,7 +50,7 @@ def _ip(*args: str) -> None:
 
 
 class Proc:
-    """A process in a namespace; its output lines (stdout and stderr together) are queued."""
+    """A process in a namespace; its output lines (stdout and stderr together) read as they come."""
 
     def __init__(self, argv: list[str], env: dict[str, str] | None) -> None:
         self.argv = argv
@@ -65,38 +63,32 @@ class Proc:
             env=host_environment(env),
             start_new_session=True,
         )
-        self.lines: queue.Queue[str] = queue.Queue()
-        self.seen: list[str] = []
-        self._reader = threading.Thread(target=self._pump, daemon=True)
-        self._reader.start()
+        assert self.proc.stdout is not None
+        self.out = OutputLines(self.proc.stdout)
 
     @property
     def pid(self) -> int:
         """The process id (``ip netns exec`` execs the command: the same process)."""
         return self.proc.pid
 
-    def _pump(self) -> None:
-        assert self.proc.stdout is not None
-        for line in self.proc.stdout:
-            self.lines.put(line.rstrip("\n"))
+    @property
+    def seen(self) -> list[str]:
+        """The lines taken so far (by :meth:`expect` and :meth:`rest`)."""
+        return self.out.seen
 
     def expect(self, text: str, timeout: float = 30.0) -> str:
         """The next line containing ``text``; fails after ``timeout`` s naming what came."""
-        deadline = time.monotonic() + timeout
-        while True:
-            remaining = deadline - time.monotonic()
-            if remaining <= 0:
-                raise AssertionError(
-                    f"no line containing {text!r} within {timeout} s from {self.argv[4:]}; "
-                    f"exit={self.proc.poll()}; last lines:\n" + "\n".join(self.seen[-30:])
-                )
-            try:
-                line = self.lines.get(timeout=min(remaining, 0.2))
-            except queue.Empty:
-                continue
-            self.seen.append(line)
-            if text in line:
-                return line
+        line = self.out.next(lambda line: text in line, timeout)
+        if line is None:
+            raise AssertionError(
+                f"no line containing {text!r} within {timeout} s from {self.argv[4:]}; "
+                f"exit={self.proc.poll()}; last lines:\n" + "\n".join(self.seen[-30:])
+            )
+        return line
+
+    def rest(self) -> list[str]:
+        """The lines printed since the last one taken (taken now)."""
+        return self.out.drain()
 
     def signal(self, signum: int) -> None:
         """Send ``signum`` to the process (not its group)."""
@@ -121,7 +113,7 @@ class Proc:
             except ProcessLookupError:
                 pass
             self.proc.wait()
-        self._reader.join(timeout=5)
+        self.out.join()
         for stream in (self.proc.stdin, self.proc.stdout):
             if stream is not None:
                 stream.close()

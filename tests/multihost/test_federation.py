@@ -92,8 +92,7 @@ def _until(host: Host, command: list[str], *texts: str, timeout: float = 60.0) -
 
 def _hears_again(listener: Proc) -> None:
     """The listener hears a message sent after now (its queue may hold older ones)."""
-    while not listener.lines.empty():
-        listener.seen.append(listener.lines.get())
+    listener.rest()
     last = max((int(line.split()[-1]) for line in listener.seen if "heard:" in line), default=0)
     while True:
         line = listener.expect("heard: hello")

@@ -93,7 +93,8 @@ def test_a_remote_launch_runs_streams_and_stops_everywhere(
     assert "/talker\n" in nodes and "/listener\n" in nodes and "/launchkit/agents/hostb\n" in nodes
     assert remote_leftovers(hosts.b) and not remote_leftovers(hosts.a)
     assert run.stop() == 0  # Ctrl-C
-    finished = [line for line in run.seen + _rest(run) if "process has finished" in line]
+    run.rest()
+    finished = [line for line in run.seen if "process has finished" in line]
     assert any("[sleeper-2]" in line for line in finished), run.seen[-20:]
     assert any("[listener-3]" in line for line in finished), run.seen[-20:]
     assert remote_leftovers(hosts.b) == []
@@ -155,14 +156,6 @@ def test_print_shows_which_host_runs_what(setup: dict[str, str]) -> None:
     talker, sleeper = text.index("node talker"), text.index("process sleeper")
     assert "machine:" not in text[talker:sleeper]
     assert "machine: laptop (run by its launchkit agent)" in text[sleeper:]
-
-
-def _rest(proc: Proc) -> list[str]:
-    lines = []
-    while not proc.lines.empty():
-        lines.append(proc.lines.get())
-    proc.seen.extend(lines)
-    return lines
 
 
 def test_a_cut_link_stops_the_remote_processes_after_the_grace_period(

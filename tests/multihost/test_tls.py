@@ -47,7 +47,7 @@ def test_mutual_tls_admits_the_ca_s_hosts_and_refuses_others(hosts: Hosts, tmp_p
     )
     outsider.expect("listener ready")
     stranger.expect(f"no link to the router at {link} yet")
-    assert not [line for line in outsider.seen if "heard:" in line] and outsider.lines.empty()
+    assert outsider.rest() == [] and not [line for line in outsider.seen if "heard:" in line]
     assert not any("without TLS" in line or "server-only" in line for line in a.seen)
 
 
@@ -99,4 +99,4 @@ def test_access_control_keeps_a_host_off_a_topic(hosts: Hosts, tmp_path: Path) -
         str(NODES / "talker.py"), "--ros-args", "-r", "__node:=t2", "-r", "chatter:=forbidden"
     )
     allowed.expect("heard: hello 50")  # a second of the talker on B
-    assert not [line for line in forbidden.seen if "heard:" in line] and forbidden.lines.empty()
+    assert forbidden.rest() == [] and not [line for line in forbidden.seen if "heard:" in line]

@@ -7,7 +7,6 @@ A uniquely named module (not ``conftest``) so that tests can import it whatever 
 from __future__ import annotations
 
 import os
-import queue
 import subprocess
 import sys
 import threading
@@ -16,6 +15,7 @@ from collections.abc import Callable
 from pathlib import Path
 
 from launchkit.ros import Node, spin_once
+from tests.support import OutputLines, ament_package
 
 NODES_DIR = Path(__file__).parent / "nodes"
 
@@ -31,19 +31,11 @@ class Child:
             text=True,
             env={**os.environ, **(env or {})},
         )
-        self.lines: queue.Queue[str] = queue.Queue()
-        self.stderr: list[str] = []
-        self._threads = [
-            threading.Thread(target=self._pump, daemon=True),
-            threading.Thread(target=self._pump_err, daemon=True),
-        ]
-        for thread in self._threads:
-            thread.start()
-
-    def _pump(self) -> None:
         assert self.proc.stdout is not None
-        for line in self.proc.stdout:
-            self.lines.put(line.rstrip("\n"))
+        self.out = OutputLines(self.proc.stdout)
+        self.stderr: list[str] = []
+        self._err_reader = threading.Thread(target=self._pump_err, daemon=True)
+        self._err_reader.start()
 
     def _pump_err(self) -> None:
         assert self.proc.stderr is not None
@@ -51,21 +43,14 @@ class Child:
             self.stderr.append(line)
 
     def expect(self, predicate: str, timeout: float = 10.0) -> str:
-        """The first stdout line containing ``predicate``; fails after ``timeout`` seconds."""
-        deadline = time.monotonic() + timeout
-        while True:
-            remaining = deadline - time.monotonic()
-            if remaining <= 0:
-                raise AssertionError(
-                    f"no line containing {predicate!r} within {timeout} s; "
-                    f"exit={self.proc.poll()} stderr={''.join(self.stderr)[-2000:]}"
-                )
-            try:
-                line = self.lines.get(timeout=remaining)
-            except queue.Empty:
-                continue
-            if predicate in line:
-                return line
+        """The next stdout line containing ``predicate``; fails after ``timeout`` seconds."""
+        line = self.out.next(lambda line: predicate in line, timeout)
+        if line is None:
+            raise AssertionError(
+                f"no line containing {predicate!r} within {timeout} s; "
+                f"exit={self.proc.poll()} stderr={''.join(self.stderr)[-2000:]}"
+            )
+        return line
 
     def stop(self, timeout: float = 5.0) -> int:
         """SIGINT, then SIGKILL after ``timeout``; the exit status."""
@@ -76,8 +61,8 @@ class Child:
             except subprocess.TimeoutExpired:
                 self.proc.kill()
                 self.proc.wait()
-        for thread in self._threads:
-            thread.join(timeout=5)
+        self.out.join()
+        self._err_reader.join(timeout=5)
         for stream in (self.proc.stdout, self.proc.stderr):
             if stream is not None:
                 stream.close()
@@ -96,19 +81,9 @@ def spin_until(node: Node, predicate: Callable[[], bool], timeout: float, what: 
 def demo_package(prefix: Path) -> None:
     """An AMENT_PREFIX_PATH package ``demo`` whose executables run the test nodes (``talker``,
     ``listener``): what ``launchkit exec demo talker`` and a launch's ``<node>`` start."""
-    marker = prefix / "share" / "ament_index" / "resource_index" / "packages" / "demo"
-    marker.parent.mkdir(parents=True)
-    marker.write_text("")
-    (prefix / "share" / "demo").mkdir(parents=True)
-    lib = prefix / "lib" / "demo"
-    lib.mkdir(parents=True)
-    for name in ("talker", "listener"):
-        exe = lib / name
-        script = str(NODES_DIR / f"{name}.py")
-        exe.write_text(
-            f"#!{sys.executable}\nimport runpy\nrunpy.run_path({script!r}, run_name='__main__')\n"
-        )
-        exe.chmod(0o755)
+    run = f"#!{sys.executable}\nimport runpy\nrunpy.run_path({{!r}}, run_name='__main__')\n"
+    scripts = {name: run.format(str(NODES_DIR / f"{name}.py")) for name in ("talker", "listener")}
+    ament_package(prefix, "demo", scripts)
 
 
 def stderr_line(child: Child, text: str, timeout: float) -> str:

@@ -20,6 +20,7 @@ import pytest
 from launchkit.packages import PackageIndex
 from launchkit.ros.msgs import InterfaceFileError
 from launchkit.ros.msgs._registry import Registry
+from tests.support import ament_package
 
 THING = "string<=8 label 'abc'\nfloat64[3] xyz [1.0, 2.0, 3.0]\n"
 READING = """\
@@ -51,13 +52,7 @@ FILES = {
 def make_prefix(root: Path, packages: dict[str, dict[str, str]]) -> Path:
     """An ament prefix (as `launchkit build` or colcon lays one out) holding ``packages``."""
     for pkg, files in packages.items():
-        marker = root / "share" / "ament_index" / "resource_index" / "packages" / pkg
-        marker.parent.mkdir(parents=True, exist_ok=True)
-        marker.write_text("")
-        for relative, text in files.items():
-            path = root / "share" / pkg / relative
-            path.parent.mkdir(parents=True, exist_ok=True)
-            path.write_text(text)
+        ament_package(root, pkg, files=files)
     return root
 
 

@@ -57,7 +57,7 @@ def test_node_with_advanced_subscriber_exits_on_sigint(router: str, children: li
     children.append(node)
     node.expect("latched_listener ready", timeout=15)
     assert node.stop(timeout=5) == 0, "the node did not exit by itself after SIGINT"
-    assert any("latched_listener done" in line for line in list(node.lines.queue))
+    assert any("latched_listener done" in line for line in node.out.drain())
 
 
 def _listening_addresses(pid: int) -> list[tuple[str, str]]:

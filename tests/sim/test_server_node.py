@@ -5,11 +5,9 @@ from __future__ import annotations
 
 import math
 import os
-import queue
 import re
 import signal
 import subprocess
-import threading
 import time
 from collections.abc import Callable, Iterator
 from pathlib import Path
@@ -27,6 +25,7 @@ from launchkit.packages import PackageIndex
 from launchkit.ros import Node, QoSProfile, spin_once
 from launchkit.ros.context import Context
 from launchkit.rotations import yaw_of
+from tests.support import OutputLines
 
 SEED_URDF = Path(__file__).resolve().parents[2] / "urdf" / "three_wheeled_robot.urdf"
 
@@ -43,32 +42,19 @@ class Server:
             text=True,
             start_new_session=True,
         )
-        self.lines: queue.Queue[str] = queue.Queue()
-        self.seen: list[str] = []
-        self._reader = threading.Thread(target=self._pump, daemon=True)
-        self._reader.start()
-
-    def _pump(self) -> None:
         assert self.proc.stdout is not None
-        for line in self.proc.stdout:
-            self.lines.put(line.rstrip("\n"))
+        self.out = OutputLines(self.proc.stdout)
 
     def expect(self, pattern: str, timeout: float) -> re.Match[str]:
         """The first new output line matching ``pattern``; fails after ``timeout`` seconds."""
-        deadline = time.monotonic() + timeout
-        while (remaining := deadline - time.monotonic()) > 0:
-            try:
-                line = self.lines.get(timeout=remaining)
-            except queue.Empty:
-                break
-            self.seen.append(line)
-            match = re.search(pattern, line)
-            if match:
-                return match
-        raise AssertionError(
-            f"gazebo printed no line matching {pattern!r} within {timeout} s "
-            f"(exit status {self.proc.poll()}); last lines:\n" + "\n".join(self.seen[-20:])
-        )
+        line = self.out.next(lambda line: re.search(pattern, line), timeout)
+        match = re.search(pattern, line) if line is not None else None
+        if match is None:
+            raise AssertionError(
+                f"gazebo printed no line matching {pattern!r} within {timeout} s "
+                f"(exit status {self.proc.poll()}); last lines:\n" + "\n".join(self.out.seen[-20:])
+            )
+        return match
 
     def stop(self) -> int:
         """SIGINT, then SIGKILL of its process group after 10 s; the exit status."""
@@ -81,7 +67,7 @@ class Server:
                 time.sleep(0.5)
                 os.killpg(self.proc.pid, signal.SIGKILL)
                 self.proc.wait()
-        self._reader.join(5)
+        self.out.join()
         if self.proc.stdout is not None:
             self.proc.stdout.close()
         return self.proc.returncode
@@ -107,15 +93,13 @@ def server(network: Context) -> Iterator[Server]:
         yield process
     finally:
         status = process.stop()
-        while not process.lines.empty():
-            process.seen.append(process.lines.get())
-        pids = [
-            int(m.group(1)) for line in process.seen if (m := re.search(r"\(pid (\d+)\)", line))
-        ]
+        process.out.drain()
+        seen = process.out.seen
+        pids = [int(m.group(1)) for line in seen if (m := re.search(r"\(pid (\d+)\)", line))]
         survivors = [pid for pid in pids if _alive(pid)]
         for pid in survivors:  # never leave one behind, even when failing
             os.kill(pid, signal.SIGKILL)
-        output = "\n".join(process.seen[-60:])
+        output = "\n".join(seen[-60:])
         # (Its stop watchdog exits 1 after dumping every stack: that is a failure too.)
         assert status == 0, f"gazebo did not stop cleanly on SIGINT (status {status}):\n" + output
         assert survivors == [], "diff drive children outlived the server"

@@ -8,6 +8,7 @@ from pathlib import Path
 import pytest
 
 from launchkit.testing import WaitTimeout
+from tests.support import ament_package
 
 TALKER = f"""#!{sys.executable}
 import launchkit.ros as ros
@@ -40,15 +41,7 @@ ros.shutdown()
 @pytest.fixture
 def talker_launch(tmp_path: Path) -> tuple[Path, dict[str, str]]:
     """A launch file running a talker node from an AMENT_PREFIX_PATH package."""
-    prefix = tmp_path / "install"
-    index = prefix / "share" / "ament_index" / "resource_index" / "packages"
-    index.mkdir(parents=True)
-    (index / "demo").touch()
-    (prefix / "share" / "demo").mkdir()
-    script = prefix / "lib" / "demo" / "talker"
-    script.parent.mkdir(parents=True)
-    script.write_text(TALKER)
-    script.chmod(0o755)
+    prefix = ament_package(tmp_path / "install", "demo", {"talker": TALKER})
     path = tmp_path / "talk.launch.xml"
     path.write_text(
         '<launch><arg name="word" default="hello"/>'
