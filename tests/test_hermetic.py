@@ -113,3 +113,19 @@ def test_envvars_names_every_launchkit_variable() -> None:
         read |= set(re.findall(r"\bLAUNCHKIT_[A-Z0-9_]*[A-Z0-9]\b", path.read_text()))
     assert read, "no LAUNCHKIT_ variable found: the search is broken"
     assert read <= set(envvars.NAMES), sorted(read - set(envvars.NAMES))
+
+
+def test_ci_runs_the_suite_in_a_hostile_shell() -> None:
+    script = (LAUNCHKIT.parent / ".ci" / "run").read_text()
+    exported = " ".join(
+        line
+        for line in script[: script.index("python -m pytest")].splitlines()
+        if line.startswith("export ")
+    )
+    for setting in (
+        "ROS_DOMAIN_ID=7",
+        f"{envvars.ROUTER}=tcp/127.0.0.1:9",
+        f"{envvars.VIEWER_PORT}=9",
+        "RMW_IMPLEMENTATION=rmw_fastrtps_cpp",
+    ):
+        assert setting in exported.split(), setting
