@@ -5,13 +5,12 @@ skipped); an ignored folder."""
 
 from __future__ import annotations
 
-import subprocess
 import time
-from dataclasses import dataclass
-from pathlib import Path
 
 import pytest
 from workspaces import (
+    INTERFACES,
+    Built,
     cpp_package,
     environment,
     interface_package,
@@ -52,26 +51,6 @@ def generate_launch_description():
     ])
 """
 PARAMS = "talk:\n  ros__parameters:\n    greeting: hi from the params file\n"
-INTERFACES = {
-    "msg/Num.msg": "int64 num\n",
-    "srv/AddThree.srv": "int64 a\nint64 b\nint64 c\n---\nint64 sum\n",
-    "action/Count.action": "int32 order\n---\nint32[] sequence\n---\nint32[] partial\n",
-}
-
-
-@dataclass
-class Built:
-    """The built workspace: its folder, the build's output and the time it took."""
-
-    root: Path
-    home: Path
-    result: subprocess.CompletedProcess[str]
-    seconds: float
-
-    @property
-    def install(self) -> Path:
-        """The install folder."""
-        return self.root / "install"
 
 
 @pytest.fixture(scope="package")

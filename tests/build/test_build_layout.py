@@ -5,7 +5,7 @@ from __future__ import annotations
 
 import os
 
-from conftest import INTERFACES, Built
+from workspaces import INTERFACES, Built
 
 #: An upper bound for the whole build (two packages built by pip) on a busy machine.
 BUILD_SECONDS = 120

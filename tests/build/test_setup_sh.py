@@ -7,8 +7,7 @@ from __future__ import annotations
 from pathlib import Path
 
 import pytest
-from conftest import Built
-from workspaces import environment, in_sourced_shell
+from workspaces import Built, environment, in_sourced_shell
 
 from launchkit.testing import LaunchFactory
 

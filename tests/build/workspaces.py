@@ -8,10 +8,32 @@ import os
 import subprocess
 import sys
 from collections.abc import Mapping
+from dataclasses import dataclass
 from pathlib import Path
 
 #: The `launchkit` command of the environment running the tests.
 BIN = Path(sys.executable).parent
+#: The interface files of the shared workspace's interface package (conftest.py builds it).
+INTERFACES = {
+    "msg/Num.msg": "int64 num\n",
+    "srv/AddThree.srv": "int64 a\nint64 b\nint64 c\n---\nint64 sum\n",
+    "action/Count.action": "int32 order\n---\nint32[] sequence\n---\nint32[] partial\n",
+}
+
+
+@dataclass
+class Built:
+    """The built workspace: its folder, the build's output and the time it took."""
+
+    root: Path
+    home: Path
+    result: subprocess.CompletedProcess[str]
+    seconds: float
+
+    @property
+    def install(self) -> Path:
+        """The install folder."""
+        return self.root / "install"
 
 
 def package_xml(
