@@ -62,6 +62,15 @@ def launcher(hosts: Hosts, env: dict[str, str], *args: str) -> Proc:
     )  # fmt: skip
 
 
+def heard_across(hosts: Hosts, env: dict[str, str]) -> tuple[Proc, Proc]:
+    """Host B's agent and host A's launch using it (a 2 s remote grace), once B's listener
+    hears A's talker."""
+    host_agent = agent(hosts.b, env)
+    run = launcher(hosts, env, "--remote-grace", "2")
+    run.expect("[listener-3] heard: hello")
+    return host_agent, run
+
+
 def remote_leftovers(host: Host) -> list[str]:
     """Command lines of the launch's processes still running on ``host``."""
     found = []
@@ -103,9 +112,7 @@ def test_a_remote_launch_runs_streams_and_stops_everywhere(
 def test_a_killed_launcher_s_remote_processes_stop_after_the_grace_period(
     hosts: Hosts, setup: dict[str, str]
 ) -> None:
-    host_agent = agent(hosts.b, setup)
-    run = launcher(hosts, setup, "--remote-grace", "2")
-    run.expect("[listener-3] heard: hello")
+    host_agent, run = heard_across(hosts, setup)
     run.signal(signal.SIGKILL)
     host_agent.expect("lost the launcher of launch")
     host_agent.expect("gone: stopping its processes")
@@ -116,9 +123,7 @@ def test_a_killed_launcher_s_remote_processes_stop_after_the_grace_period(
 def test_an_agent_killed_leaves_no_orphans_and_the_launch_hears_of_it(
     hosts: Hosts, setup: dict[str, str]
 ) -> None:
-    host_agent = agent(hosts.b, setup)
-    run = launcher(hosts, setup, "--remote-grace", "2")
-    run.expect("[listener-3] heard: hello")
+    host_agent, run = heard_across(hosts, setup)
     host_agent.signal(signal.SIGKILL)
     wait_until_gone(hosts.b, timeout=30)  # its orphan guard killed every group
     agent(hosts.b, setup)  # a new run of the agent
@@ -162,9 +167,7 @@ def test_a_cut_link_stops_the_remote_processes_after_the_grace_period(
     hosts: Hosts, setup: dict[str, str]
 ) -> None:
     fast = {**setup, "ZENOH_CONFIG_OVERRIDE": "transport/link/tx/lease=2000"}
-    host_agent = agent(hosts.b, fast)
-    run = launcher(hosts, fast, "--remote-grace", "2")
-    run.expect("[listener-3] heard: hello")
+    host_agent, run = heard_across(hosts, fast)
     hosts.a.set_link(False)
     host_agent.expect("lost the launcher of launch")
     host_agent.expect("gone: stopping its processes")

@@ -159,15 +159,21 @@ def test_a_command_waits_for_the_router_saying_so_once(
     assert "".join(echo.stderr).count("Unable to connect") == 1
 
 
+def talker_launch(folder: Path) -> Child:
+    """``launchkit run`` of a launch file starting package ``demo``'s talker (made in
+    ``folder``)."""
+    demo_package(folder / "prefix")
+    launch = folder / "talk.launch.xml"
+    launch.write_text('<launch><node pkg="demo" exec="talker"/></launch>\n')
+    env = {"AMENT_PREFIX_PATH": str(folder / "prefix")}
+    return Child(["-m", "launchkit", "run", str(launch)], env=env)
+
+
 def test_echo_right_after_run_prints_the_first_message(
     shared: str, tmp_path: Path, children: list[Child]
 ) -> None:
     # issue #9: `launchkit run robot.launch.xml &` then at once `launchkit topic echo ... --once`
-    demo_package(tmp_path / "prefix")
-    launch = tmp_path / "talk.launch.xml"
-    launch.write_text('<launch><node pkg="demo" exec="talker"/></launch>\n')
-    env = {"AMENT_PREFIX_PATH": str(tmp_path / "prefix")}
-    launcher = Child(["-m", "launchkit", "run", str(launch)], env=env)
+    launcher = talker_launch(tmp_path)
     children.append(launcher)
     echo = Child(["-m", "launchkit", "topic", "echo", "/chatter", "--once"])
     children.append(echo)
@@ -179,16 +185,11 @@ def test_echo_right_after_run_prints_the_first_message(
 def test_a_launch_joins_the_shared_router_a_command_started(
     shared: str, tmp_path: Path, children: list[Child]
 ) -> None:
-    demo_package(tmp_path / "prefix")
-    launch = tmp_path / "talk.launch.xml"
-    launch.write_text('<launch><node pkg="demo" exec="talker"/></launch>\n')
     echo = Child(["-m", "launchkit", "topic", "echo", "/chatter", "--once"])
     children.append(echo)
     echo.expect("WARNING: topic [/chatter] does not appear to be published yet", timeout=60)
     assert SharedRouterState.read(shared) is not None
-    launcher = Child(
-        ["-m", "launchkit", "run", str(launch)], env={"AMENT_PREFIX_PATH": str(tmp_path / "prefix")}
-    )
+    launcher = talker_launch(tmp_path)
     children.append(launcher)
     launcher.expect(f"joined the shared ROS router at {shared}", timeout=60)
     echo.expect("data: hello", timeout=60)
