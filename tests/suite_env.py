@@ -8,6 +8,11 @@ So :func:`suite_environment` drops every ``LAUNCHKIT_*`` setting (``launchkit.en
 logs and cache, ROS's logs, the XDG folders) into one folder of the run; :func:`private_defaults`
 gives the defaults that remain a private router port, viewer port and ROS domain. The suite's
 ``conftest.py`` applies both once per process and the defaults again for each test.
+
+The suite's own settings stay the user's to give: ``LAUNCHKIT_FUZZ_PROFILE`` and
+``LAUNCHKIT_FUZZ_EXAMPLES`` (tests/fuzz), ``LAUNCHKIT_CHROMIUM`` (tests/viewer),
+``LAUNCHKIT_ROS2_REFERENCE`` (the real ROS 2 launch stack to compare with),
+``LAUNCHKIT_STRESS_RUNS`` and ``LAUNCHKIT_VIEWER_SCREENSHOT``; launchkit itself reads none of them.
 """
 
 from __future__ import annotations

@@ -1,6 +1,7 @@
 """Hypothesis profiles of the fuzzing harness.
 
-``ci`` (the default): few examples, derandomized (the same examples on every run, so a busy
+``ci`` (the default): few examples (20 per test: the suite's bound; the long search is the
+``fuzz`` profile's), derandomized (the same examples on every run, so a busy
 machine cannot make CI flaky), no deadline (load must not fail a test; hangs are caught by the
 harness's own time bound), no example database written. ``fuzz``: a long random search, run
 by hand::
@@ -21,7 +22,7 @@ _COMMON = {
     "database": None,
     "suppress_health_check": [HealthCheck.too_slow, HealthCheck.data_too_large],
 }
-settings.register_profile("ci", max_examples=40, derandomize=True, **_COMMON)
+settings.register_profile("ci", max_examples=20, derandomize=True, **_COMMON)
 settings.register_profile(
     "fuzz", max_examples=int(os.environ.get("LAUNCHKIT_FUZZ_EXAMPLES", "5000")), **_COMMON
 )
