@@ -37,9 +37,8 @@ from launchkit.description.events import (
 from launchkit.description.launch_context import LaunchContext, Visitable
 from launchkit.description.substitutions.base import literal
 from launchkit.errors import LaunchFileError
-from launchkit.frontend.python.context_view import LaunchContextView
 from launchkit.frontend.python.launch_api import flatten
-from launchkit.frontend.python.values import call_user, current_modules, here
+from launchkit.frontend.python.values import LaunchContextView, call_user, current_modules, here
 
 
 def describe_action(action: object) -> str:
