@@ -69,7 +69,9 @@ ALLOWED: dict[str, tuple[str, ...]] = {
 }  # fmt: skip
 
 #: Known exceptions (none today): a module allowed over the size limit, an import circle.
-EXEMPT_SIZE: set[str] = set()
+#: Issue 23 withdraws the hard limit (a module past ~600 lines is a reason to look); until its
+#: change lands, the supervisor (which it merges with child_host.py) is let past it.
+EXEMPT_SIZE: set[str] = {"launchkit/runtime/supervisor.py"}
 EXEMPT_CIRCLES: list[set[str]] = []
 
 

@@ -117,8 +117,8 @@ class Supervisor(ChildHostMixin):
                 self._start_new(spec)
 
     def schedule_timer(self, period: float, timer: DelayedActions, snapshot: Snapshot) -> None:
-        """Fire ``timer`` after ``period`` seconds."""
-        self._timers.add(self.clock() + period, timer, snapshot)
+        """Fire ``timer`` ``period`` seconds after the evaluation setting it (see timers.py)."""
+        self._timers.add(period, timer, snapshot)
 
     def request_shutdown(self, reason: str) -> None:
         """``<shutdown>``: stop everything."""
@@ -152,10 +152,14 @@ class Supervisor(ChildHostMixin):
             context.child_groups = self._cleanup
             context.uninterrupted = self._signals.deferred
             self._first_pass(description, context)
+            self._timers.arm(self.clock())  # the timers it set count from now
             self.hooks.launch_ready()
             self._relay.drain(self.fail)
-            while not self._done():
-                self.step(self._timeout())
+            while True:
+                while not self._done():
+                    self.step(self._timeout())
+                if not self._went_idle():
+                    break
         finally:
             self.close()
         return self.exit_code
@@ -219,6 +223,7 @@ class Supervisor(ChildHostMixin):
         self._io.poll(self.processes)
         self._run_due()
         self._relay.drain(self.fail)  # the handlers of what happened; an error shuts down
+        self._timers.arm(self.clock())
 
     def _done(self) -> bool:
         if any(p.alive for p in self.processes):
@@ -226,6 +231,19 @@ class Supervisor(ChildHostMixin):
         if any(p.state is State.BACKOFF for p in self.processes) and not self.shutting_down:
             return False
         return not self._timers
+
+    def _went_idle(self) -> bool:
+        """Nothing runs or waits any more and nothing asked to shut down: as ROS, the launch
+        shuts down with ``Shutdown(reason='idle')``, whose OnShutdown handlers run now (what
+        they start keeps the loop going); False once it has."""
+        if self.shutting_down:
+            return False
+        self.shutting_down = True
+        self._timers.cancel_on_shutdown()
+        if (error := self._relay.shutting_down("idle", False)) is not None:
+            self.fail(error)
+        self._timers.arm(self.clock())
+        return True
 
     def _timeout(self) -> float | None:
         candidates = [self._timers.next_due(), *(p.lifecycle.deadline for p in self.processes)]

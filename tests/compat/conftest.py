@@ -85,8 +85,16 @@ def run_launch(
 ) -> Ran:
     """Run ``launchkit run ARGS`` in ``cwd`` to its end (killed, with all it started, after
     ``timeout`` seconds)."""
+    return run_launchkit(cwd, "run", *args, env=env, timeout=timeout)
+
+
+def run_launchkit(
+    cwd: Path, *args: str, env: Mapping[str, str] | None = None, timeout: float = 90.0
+) -> Ran:
+    """Run ``launchkit ARGS`` in ``cwd`` to its end (killed, with all it started, after
+    ``timeout`` seconds)."""
     process = subprocess.Popen(
-        [sys.executable, "-m", "launchkit", "run", *args],
+        [sys.executable, "-m", "launchkit", *args],
         cwd=cwd,
         stdout=subprocess.PIPE,
         stderr=subprocess.STDOUT,
@@ -100,7 +108,9 @@ def run_launch(
     except subprocess.TimeoutExpired:
         os.killpg(process.pid, signal.SIGKILL)
         out, _ = process.communicate()
-        raise AssertionError(f"launchkit run did not end within {timeout} s:\n{out}") from None
+        raise AssertionError(
+            f"launchkit {args[0]} did not end within {timeout} s:\n{out}"
+        ) from None
     return Ran(process.returncode, out.splitlines())
 
 

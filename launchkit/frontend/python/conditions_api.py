@@ -22,23 +22,37 @@ from launchkit.frontend.python.values import (
     call_user,
     context_view,
     current_modules,
+    function_name,
     here,
     optional_value,
     to_value,
 )
 
 
-def _given_a_view(evaluate: Callable[[Any, Any], bool]) -> Callable[[Any, Any], bool]:
+def _call(condition: Any, function: Callable[..., Any], *args: Any) -> bool:
+    """``function(*args, context)``: a launch file's own code deciding ``condition`` (not
+    called while ``--print`` shows an event handler's actions: the action is shown)."""
+    view = context_view(args[-1])
+    preview = view.real.instead_of_calling
+    if preview is not None:
+        preview(f"{function_name(function)} (a condition)", getattr(condition, "location", None))
+        return True
+    modules = getattr(condition, "_modules", None) or current_modules()
+    return bool(call_user(function, "condition", modules, *args[:-1], view))
+
+
+def _launch_files_evaluate(evaluate: Callable[[Any, Any], bool]) -> Callable[[Any, Any], bool]:
     @functools.wraps(evaluate)
     def wrapper(self: Any, context: Any) -> bool:
-        return evaluate(self, context_view(context))
+        return _call(self, evaluate, self, context)
 
     return wrapper
 
 
 class Condition:
     """``launch.Condition(predicate=None)``: ``evaluate(context)`` is ``predicate(context)``,
-    False without one. A subclass's own ``evaluate`` also gets the context launch files see."""
+    False without one. A launch file's subclass's own ``evaluate`` gets the context launch
+    files see too."""
 
     def __init__(self, *, predicate: Callable[[Any], bool] | None = None) -> None:
         self._predicate = predicate
@@ -47,15 +61,15 @@ class Condition:
 
     def __init_subclass__(cls, **kwargs: Any) -> None:
         super().__init_subclass__(**kwargs)
-        if "evaluate" in cls.__dict__:
-            cls.evaluate = _given_a_view(cls.__dict__["evaluate"])  # type: ignore[method-assign,assignment]
+        if "evaluate" in cls.__dict__ and cls.__module__ != __name__:  # a launch file's own
+            own = _launch_files_evaluate(cls.__dict__["evaluate"])
+            cls.evaluate = own  # type: ignore[method-assign,assignment]
 
     def evaluate(self, context: Any) -> bool:
         """Whether the guarded action runs."""
         if self._predicate is None:
             return False
-        view = context_view(context)
-        return bool(call_user(self._predicate, "condition", self._modules, view))
+        return _call(self, self._predicate, context)
 
     def describe(self) -> str:
         """``repr``, as ROS's base class says."""

@@ -75,7 +75,10 @@ class LaunchFileSubstitution(Substitution):
         self._modules = current_modules()
 
     def perform(self, context: LaunchContext) -> str:
-        """What the class's ``perform`` returns."""
+        """What the class's ``perform`` returns (``--print`` showing an event handler's
+        actions does not call it: ROS would only on the event)."""
+        if context.instead_of_calling is not None:
+            return f"<{type(self.owner).__name__}>"
         view = LaunchContextView(context)
         result = call_user(self.owner.perform, "substitution", self._modules, view)
         return str(result)
@@ -183,11 +186,18 @@ def call_user(
     except LaunchkitError:
         raise
     except Exception as error:
-        name = getattr(function, "__qualname__", None) or repr(function)
+        name = function_name(function)
         raise LaunchFileError(
             f"{what} {name}() raised {type(error).__name__}: {error}",
             error_location(error, function),
         ) from None
+
+
+def function_name(function: Callable[..., Any]) -> str:
+    """A function's name as written (``<lambda>``, ``Class.method``, not the functions it is
+    defined in)."""
+    name = str(getattr(function, "__qualname__", None) or type(function).__name__)
+    return name.rpartition("<locals>.")[2]
 
 
 def error_location(error: BaseException, function: object = None) -> Location | None:
