@@ -44,6 +44,7 @@ from launchkit.runtime.process import (
     SupervisedProcess,
     by_machine,
     check_programs,
+    missing_folder,
 )
 from launchkit.runtime.process_io import POLL_INTERVAL, ProcessIO
 from launchkit.runtime.process_report import ProcessReport
@@ -279,7 +280,7 @@ class Supervisor(ChildHostMixin):
 
     def fail(self, error: LaunchkitError) -> None:
         """An error while running: report it where it happened and shut down, exit 1."""
-        self.output.launch_line("ERROR", "launch", error.format())
+        self.output.launch_error(error.format())
         self.hooks.launch_error(error.format())
         self.exit_code = self.exit_code or 1
         self.begin_shutdown("an error occurred", level="ERROR")
@@ -315,8 +316,9 @@ class Supervisor(ChildHostMixin):
         except OSError as error:
             process.lifecycle.failed()
             self._report.could_not_start(process, error)
-            self.exit_code = self.exit_code or 1
-            self.begin_shutdown("a process could not be started", level="ERROR")
+            if not missing_folder(process.spec):  # which fails only its process, as in ROS
+                self.exit_code = self.exit_code or 1
+                self.begin_shutdown("a process could not be started", level="ERROR")
             return
         process.lifecycle.started(self.clock())
         self._watch(process)
