@@ -87,6 +87,9 @@ def main(argv: list[str]) -> int:
         config = RvizConfig(args.fixed_frame, config.displays, config.frame_rate, config.background)
     ros.init(argv)
     node = ros.Node("rviz2")
+    if args.ignored:
+        ignored = " ".join(args.ignored)
+        node.get_logger().info(f"ignoring {ignored}: no meaning for launchkit's browser viewer")
     server: ViewerServer | None = None
     link = RosLink(node)
     try:
