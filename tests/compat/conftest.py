@@ -9,10 +9,7 @@ command lines and parameter files compare argument by argument.
 
 from __future__ import annotations
 
-import os
 import re
-import signal
-import subprocess
 import sys
 import textwrap
 from collections.abc import Iterable, Mapping
@@ -20,6 +17,9 @@ from dataclasses import dataclass
 from pathlib import Path
 
 import pytest
+
+from tests.engine.launcher import Launcher, wait_gone
+from tests.engine.launcher import run_launchkit as launchkit_command
 
 #: A stub node: prints its arguments, then each ``--params-file``'s text on one line.
 STUB_NODE = textwrap.dedent(
@@ -84,34 +84,22 @@ def run_launch(
     cwd: Path, *args: str, env: Mapping[str, str] | None = None, timeout: float = 90.0
 ) -> Ran:
     """Run ``launchkit run ARGS`` in ``cwd`` to its end (killed, with all it started, after
-    ``timeout`` seconds)."""
-    return run_launchkit(cwd, "run", *args, env=env, timeout=timeout)
-
-
-def run_launchkit(
-    cwd: Path, *args: str, env: Mapping[str, str] | None = None, timeout: float = 90.0
-) -> Ran:
-    """Run ``launchkit ARGS`` in ``cwd`` to its end (killed, with all it started, after
-    ``timeout`` seconds)."""
-    process = subprocess.Popen(
-        [sys.executable, "-m", "launchkit", *args],
-        cwd=cwd,
-        stdout=subprocess.PIPE,
-        stderr=subprocess.STDOUT,
-        stdin=subprocess.DEVNULL,
-        text=True,
-        start_new_session=True,
-        env={**os.environ, "ROS_LOG_DIR": str(cwd / "log"), "TMPDIR": str(cwd), **(env or {})},
-    )
+    ``timeout`` seconds); its output, stdout and stderr in the order written."""
+    private = {"ROS_LOG_DIR": str(cwd / "log"), "TMPDIR": str(cwd)}
+    launcher = Launcher(*args, cwd=cwd, env={**private, **(env or {})})
     try:
-        out, _ = process.communicate(timeout=timeout)
-    except subprocess.TimeoutExpired:
-        os.killpg(process.pid, signal.SIGKILL)
-        out, _ = process.communicate()
-        raise AssertionError(
-            f"launchkit {args[0]} did not end within {timeout} s:\n{out}"
-        ) from None
-    return Ran(process.returncode, out.splitlines())
+        status = launcher.finish(timeout)
+    finally:
+        if launcher.proc.poll() is None:
+            launcher.kill()
+    wait_gone(list(launcher.pids.values()))
+    return Ran(status, launcher.lines)
+
+
+def run_launchkit(cwd: Path, *args: str, env: Mapping[str, str] | None = None) -> Ran:
+    """Run another ``launchkit`` command (``check``, ``pkg list``) in ``cwd`` to its end."""
+    done = launchkit_command(*args, cwd=cwd, env={"ROS_LOG_DIR": str(cwd / "log"), **(env or {})})
+    return Ran(done.returncode, (done.stdout + done.stderr).splitlines())
 
 
 @pytest.fixture

@@ -48,6 +48,12 @@ def extract_type(data_type: Any) -> tuple[Any, bool]:
     return scalar, is_list
 
 
+def _element_type(data_type: Any) -> tuple[Any, bool]:
+    """:func:`extract_type`, with None (no type asked for) as ``(None, True)``: a list of any
+    allowed type."""
+    return (None, True) if data_type is None else extract_type(data_type)
+
+
 def is_instance_of_valid_type(value: Any, *, can_be_str: bool = False) -> bool:
     """Whether ``value`` is a scalar of an allowed type or a uniform list of one (an empty
     list is; ``can_be_str``: strings may be mixed in)."""
@@ -186,9 +192,7 @@ def normalize_typed_substitution(value: Any, data_type: Any) -> Any:
             f"substitutions. Got `value={value}` of type `{type(value)}`. "
         )
     kinds = _list_kind(value)
-    is_list = True
-    if data_type is not None:
-        data_type, is_list = extract_type(data_type)
+    data_type, is_list = _element_type(data_type)
     if not is_list:
         raise TypeError(
             "The provided value resolves to a list, though the required type is a scalar. "
@@ -232,14 +236,12 @@ def perform_typed_substitution(context: Any, value: Any, data_type: Any) -> Any:
         raise TypeError(
             f"Input value is not an acceptable 'NormalizedValueType'.Got value='{value}'"
         )
-    scalar = None
-    if data_type is not None:
-        scalar, is_list = extract_type(data_type)
-        if not is_list:
-            raise ValueError(
-                "The input value is a list, cannot convert it to a scalar. "
-                f"Got value='{value}', expected type {scalar}."
-            )
+    scalar, is_list = _element_type(data_type)
+    if not is_list:
+        raise ValueError(
+            "The input value is a list, cannot convert it to a scalar. "
+            f"Got value='{value}', expected type {scalar}."
+        )
     output = [
         coerce_to_type(perform_substitutions(context, item), scalar)
         if is_normalized_substitution(item)
