@@ -3,6 +3,7 @@ the viewer sends them to its page): rosidl_runtime_py's ``convert`` and ``set_me
 
 from __future__ import annotations
 
+import array
 from typing import Any
 
 import numpy as np
@@ -42,13 +43,17 @@ def to_data(msg: Any, truncate: int | None = TRUNCATE_LENGTH) -> dict[str, Any]:
 def _value(value: Any, truncate: int | None) -> Any:
     if hasattr(value, "__msgtype__"):
         return to_data(value, truncate)
-    if isinstance(value, np.ndarray):
-        value = value.tolist()
-    if isinstance(value, list):
-        items = [_value(v, truncate) for v in value]
-        if truncate is not None and len(items) > truncate:
-            return [*items[:truncate], "..."]
-        return items
+    if isinstance(value, (list, tuple, np.ndarray, array.array, bytes, bytearray)):
+        # every container a message field may be (rosidl: array.array for numeric sequences,
+        # numpy for fixed arrays, bytes for byte[]), cut before converting: an image's data
+        # is millions of items
+        cut = truncate is not None and len(value) > truncate
+        head = value[:truncate] if cut else value
+        plain = head.tolist() if isinstance(head, (np.ndarray, array.array)) else list(head)
+        items = [_value(v, truncate) for v in plain]
+        return [*items, "..."] if cut else items
+    if isinstance(value, np.generic):
+        return value.item()
     if isinstance(value, str) and truncate is not None and len(value) > truncate:
         return value[:truncate] + "..."
     return value
