@@ -4,10 +4,11 @@
 import os
 import sys
 
-from launch import LaunchDescription
 from launch.actions import DeclareLaunchArgument, ExecuteProcess
 from launch.substitutions import LaunchConfiguration
 from launch_ros.actions import Node
+
+from launch import LaunchDescription
 
 NODES = os.path.join(os.path.dirname(os.path.abspath(__file__)), "panel_nodes.py")
 ROLES = {
