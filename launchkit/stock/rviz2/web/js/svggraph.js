@@ -93,9 +93,14 @@ export class SvgGraph {
   }
 
   // Show the whole graph.
+  // Show the whole graph, at its natural size when it fits (a small graph is not blown up).
   fit() {
     this.userMoved = false;
-    this.view = this.bounds ? [...this.bounds] : [0, 0, 100, 100];
+    const [x, y, w, h] = this.bounds || [0, 0, 100, 100];
+    const rect = this.svg.getBoundingClientRect();
+    const width = Math.max(w, rect.width || 0);
+    const height = Math.max(h, rect.height || 0);
+    this.view = [x - (width - w) / 2, y - (height - h) / 2, width, height];
     this.apply();
   }
 
