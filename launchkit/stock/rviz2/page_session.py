@@ -163,12 +163,16 @@ class PageSession:
             self.hub.unwant(self, topic)
 
     def _interface(self, request: dict[str, Any]) -> None:
-        type_name = _type_name(request, "interface")
+        # answered whatever was asked: the page waits for the answer about the type it named
+        asked = request.get("type")
         try:
+            type_name = _type_name(request, "interface")
             schema = interface_schema(type_name)
+        except ValueError as error:
+            schema = {"error": str(error)}
         except KeyError:
-            schema = {"error": f"unknown type {type_name}"}
-        self.outbox.put(json.dumps({"op": "interface", "type": type_name, **schema}))
+            schema = {"error": f"unknown type {asked}"}
+        self.outbox.put(json.dumps({"op": "interface", "type": asked, **schema}))
 
     def _call(self, request: dict[str, Any]) -> None:
         call_id = request.get("id")
