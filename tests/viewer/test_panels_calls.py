@@ -37,9 +37,7 @@ def test_a_service_call_from_the_form_shows_the_response(
     assert not viewer.problems, viewer.problems
 
 
-def test_a_message_from_the_form_reaches_a_subscriber(
-    panels_launch: Any, open_viewer: Any
-) -> None:
+def test_a_message_from_the_form_reaches_a_subscriber(panels_launch: Any, open_viewer: Any) -> None:
     viewer = open_panel(open_viewer, panels_launch.viewer_url, "publisher")
     viewer.page.locator("#pub-topic").fill("/robot1/say")
     type_box = viewer.page.locator("#pub-type")

@@ -36,7 +36,7 @@ export class TfTreePanel {
     svg.classList.add("graph-canvas");
     columns.append(scroller, svg);
     root.append(bar, columns);
-    this.picture = new SvgGraph(svg, "TB");
+    this.picture = new SvgGraph(svg, "LR");
     setInterval(() => { if (this.open) this.render(); }, 1000);
   }
 
