@@ -1,7 +1,7 @@
 // The console panel (rqt_console): the log lines every node sends on /rosout
 // (rcl_interfaces/msg/Log), newest last, with filters by severity, by node and by text, and a
 // pause that holds new lines back (they are shown on resume). /rosout is subscribed while the
-// panel is open; its publishers keep their last lines (transient local), so reopening shows them.
+// panel is open; publishers that keep their last lines (transient local) send the last 10 again.
 
 const LEVELS = [
   // [level, name] as rcl_interfaces/msg/Log's constants
