@@ -18,6 +18,7 @@
 
 from __future__ import annotations
 
+import os
 import sys
 import time
 from typing import Any
@@ -74,7 +75,7 @@ def rosout_line(node: ros.Node, level: int, text: str) -> Any:
         level=level,
         name=node.get_name(),
         msg=text,
-        file=__file__,
+        file=os.path.basename(__file__),
         function="tick",
         line=1,
     )
