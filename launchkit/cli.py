@@ -24,7 +24,7 @@ from launchkit.errors import LaunchkitError, UserError, printable
 if TYPE_CHECKING:
     from launchkit.runtime.hooks import SupervisorHooks
 
-ROS_COMMANDS = ("topic", "node", "service", "param", "interface", "router")
+ROS_COMMANDS = ("topic", "node", "service", "param", "interface", "router", "tf")
 
 
 def _launch_parser(prog: str, description: str) -> CommandParser:
