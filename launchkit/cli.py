@@ -299,7 +299,7 @@ def _pkg(args: argparse.Namespace, packages: object) -> int:
 
     assert isinstance(packages, PackageIndex)
     if args.pkg_command == "list":
-        print("\n".join(packages.names()))
+        print("\n".join(f"{name}  {packages.origin(name)}" for name in packages.names()))
     elif args.pkg_command == "prefix":
         print(packages.prefix(args.package))
     elif args.pkg_command == "share":
