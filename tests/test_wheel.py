@@ -65,7 +65,7 @@ def test_installed_wheel_has_the_robot_share_dir(tmp_path: Path) -> None:
     )
     assert "spawn_entity" in printed.stdout and "robot_state_publisher" in printed.stdout
     assert str(share / "config" / "robot.rviz") in printed.stdout
-    assert "launchkit.stock.gazebo_ros.server" in printed.stdout
+    assert "launchkit.stock.gazebo_ros.gzserver" in printed.stdout
     # xacro is a runtime dependency: tutorial launch files run $(command 'xacro ...')
     xacro = tmp_path / "xacro.launch.xml"
     xacro.write_text(
