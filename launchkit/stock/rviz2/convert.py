@@ -23,7 +23,7 @@ from typing import Any
 
 import numpy as np
 
-from launchkit.ros.message_data import to_data
+from launchkit.ros.message_text import to_data
 from launchkit.ros.msgs import deserialize
 
 #: Longest array or string of a message shown whole in the topic list's message view.

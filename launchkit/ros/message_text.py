@@ -1,0 +1,231 @@
+"""Messages as text, the way ROS 2 prints them: ``ros2 topic echo``'s YAML and CSV
+(rosidl_runtime_py's ``message_to_yaml`` / ``message_to_csv``), and the ``repr`` that rosidl's
+generated classes give (``ros2 topic pub`` and ``ros2 service call`` print it).
+
+Everything here is driven by the message's *field types*, never by how a value happens to be
+stored: a numeric sequence may be held as a list, an ``array.array`` or a numpy array, and each
+value is first turned into what rosidl's Python holds for its field (:func:`rosidl_value`), so
+the text is rosidl's whatever class the message is.
+"""
+
+from __future__ import annotations
+
+import array
+import sys
+from typing import Any
+
+import numpy as np
+import yaml
+
+from launchkit.ros.message_data import fields_of
+from launchkit.ros.msgs import message_type_name
+
+_BASE, _NAME, _ARRAY, _SEQUENCE = 1, 2, 3, 4
+TRUNCATE_LENGTH = 128
+#: the member rosidl gives an empty message; its Python classes do not show it
+_PLACEHOLDER = "structure_needs_at_least_one_member"
+
+#: rosidl keeps numeric sequences in an ``array.array`` of this type code, and fixed-size
+#: numeric arrays in a numpy array of this dtype (``char`` is ``uint8`` by then)
+_TYPECODES = {
+    "float32": "f",
+    "float64": "d",
+    "int8": "b",
+    "uint8": "B",
+    "int16": "h",
+    "uint16": "H",
+    "int32": "i",
+    "uint32": "I",
+    "int64": "q",
+    "uint64": "Q",
+}
+#: the IDL names rosidl_parser gives the basic types of a ``.msg`` file (``--no-arr`` shows them)
+_IDL_NAMES = {"float32": "float", "float64": "double", "bool": "boolean", "byte": "octet"}
+
+
+def rosidl_value(value: Any, desc: Any) -> Any:
+    """``value`` of a field of type ``desc`` (a rosbags field description) as rosidl's Python
+    holds it: ``bytes`` for ``byte``, an ``array.array`` for a numeric sequence, a numpy array
+    for a fixed-size numeric array, a list for any other array or sequence, Python scalars."""
+    kind, detail = desc
+    if kind == _BASE:
+        return _scalar(value, detail[0])
+    if kind == _NAME:
+        return value
+    element, _ = detail
+    base = element[1][0] if element[0] == _BASE else None
+    code = _TYPECODES.get(base or "")
+    if code is not None and kind == _SEQUENCE:
+        return array.array(code, [_scalar(v, base or "") for v in value])
+    if code is not None:
+        return np.array([_scalar(v, base or "") for v in value], dtype=np.dtype(code))
+    return [rosidl_value(v, element) for v in value]
+
+
+def _scalar(value: Any, base: str) -> Any:
+    if isinstance(value, np.generic):
+        value = value.item()
+    if base == "byte":
+        return value if isinstance(value, bytes) else bytes([value])
+    if base == "bool":
+        return bool(value)
+    return value
+
+
+def is_message(value: Any) -> bool:
+    """Whether ``value`` is a message (of any launchkit message class)."""
+    name = getattr(value, "_TYPE_NAME", None) or getattr(value, "__msgtype__", None)
+    return isinstance(name, str) and not isinstance(value, type)
+
+
+def _fields(msg: Any) -> list[tuple[str, Any, Any]]:
+    """(name, field description, value as rosidl holds it) of each field of ``msg``."""
+    return [
+        (name, desc, rosidl_value(getattr(msg, name), desc))
+        for name, desc in fields_of(message_type_name(msg))
+        if name != _PLACEHOLDER
+    ]
+
+
+# -- repr ---------------------------------------------------------------------------------------
+
+
+def short_repr(msg: Any) -> str:
+    """``pkg.msg.Name(field=value, ...)``: the ``repr`` of rosidl's generated classes, which
+    ``ros2 topic pub`` (``publishing #1: ...``) and ``ros2 service call`` print."""
+    parts = []
+    for name, _, value in _fields(msg):
+        if is_message(value):
+            text = short_repr(value)
+        elif isinstance(value, array.array):
+            # rosidl shows a numeric sequence as the list inside ``array('d', [...])``
+            text = repr(value.tolist())
+        elif isinstance(value, list):
+            text = "[" + ", ".join(short_repr(v) if is_message(v) else repr(v) for v in value)
+            text += "]"
+        else:
+            text = repr(value)
+        parts.append(f"{name}={text}")
+    return f"{message_type_name(msg).replace('/', '.')}({', '.join(parts)})"
+
+
+def value_text(value: Any, desc: Any) -> str:
+    """``str()`` of a field's value as rosidl holds it (``ros2 topic echo --field`` of a field
+    that is not a message prints this): ``array('d', [1.0])``, ``[0. 0.]``, ``hello``."""
+    held = rosidl_value(value, desc)
+    if isinstance(held, list):
+        return "[" + ", ".join(short_repr(v) if is_message(v) else repr(v) for v in held) + "]"
+    return str(held)
+
+
+# -- YAML and CSV (rosidl_runtime_py.convert) -----------------------------------------------------
+
+
+def to_data(
+    msg: Any,
+    truncate: int | None = TRUNCATE_LENGTH,
+    *,
+    no_arr: bool = False,
+    no_str: bool = False,
+) -> dict[str, Any]:
+    """A message as nested dicts and lists, as ``message_to_ordereddict`` makes it: strings,
+    byte values and sequences longer than ``truncate`` cut with ``...``; with ``no_arr`` each
+    array or sequence replaced by a summary of its type and length, with ``no_str`` each string
+    by its length."""
+    return {
+        name: _data(value, desc, truncate, no_arr, no_str) for name, desc, value in _fields(msg)
+    }
+
+
+def _data(value: Any, desc: Any, truncate: int | None, no_arr: bool, no_str: bool) -> Any:
+    if isinstance(value, bytes):  # a byte value, shown as characters
+        cut = truncate is not None and len(value) > truncate
+        text = "".join(chr(c) for c in (value[:truncate] if cut else value))
+        return text + "..." if cut else text
+    if isinstance(value, str):
+        if no_str:
+            return f"<string length: <{len(value)}>>"
+        return value[:truncate] + "..." if truncate is not None and len(value) > truncate else value
+    if isinstance(value, (list, array.array, np.ndarray)):
+        if no_arr and desc is not None:
+            return _array_summary(value, desc)
+        items = list(value[:truncate] if truncate is not None else value)
+        data = [_data(_plain(v), None, truncate, no_arr, no_str) for v in items]
+        return [*data, "..."] if truncate is not None and len(value) > truncate else data
+    if is_message(value):
+        return to_data(value, truncate, no_arr=no_arr, no_str=no_str)
+    return _plain(value)
+
+
+def _plain(value: Any) -> Any:
+    return value.item() if isinstance(value, np.generic) else value
+
+
+def _array_summary(value: Any, desc: Any) -> str:
+    kind, (element, bound) = desc
+    name = _element_type_name(element)
+    if kind == _ARRAY:
+        return f"<array type: {name}[{bound}]>"
+    if bound:
+        return f"<sequence type: {name}[{bound}], length: {len(value)}>"
+    return f"<sequence type: {name}, length: {len(value)}>"
+
+
+def _element_type_name(element: Any) -> str:
+    kind, detail = element
+    if kind == _NAME:
+        return str(detail)
+    base = str(detail[0])
+    if base in ("string", "wstring"):
+        return base
+    return _IDL_NAMES.get(base, base)
+
+
+def to_yaml(
+    msg: Any,
+    truncate: int | None = TRUNCATE_LENGTH,
+    *,
+    no_arr: bool = False,
+    no_str: bool = False,
+    flow_style: bool = False,
+) -> str:
+    """A message as ``ros2 topic echo`` prints it (``message_to_yaml``)."""
+    return yaml.safe_dump(
+        to_data(msg, truncate, no_arr=no_arr, no_str=no_str),
+        allow_unicode=True,
+        width=sys.maxsize,
+        default_flow_style=flow_style,
+        sort_keys=False,
+    )
+
+
+def to_csv(
+    msg: Any, truncate: int | None = TRUNCATE_LENGTH, *, no_arr: bool = False, no_str: bool = False
+) -> str:
+    """A message as ``ros2 topic echo --csv`` prints it (``message_to_csv``): every field,
+    nested ones flattened, separated by commas."""
+    return ",".join(_csv(value, desc, truncate, no_arr, no_str) for _, desc, value in _fields(msg))
+
+
+def _csv(value: Any, desc: Any, truncate: int | None, no_arr: bool, no_str: bool) -> str:
+    if isinstance(value, (list, array.array, np.ndarray)):
+        if no_arr and desc is not None:
+            return _array_summary(value, desc)
+        out = ""
+        for index, item in enumerate(value):
+            if out:
+                out += ","
+            if truncate is not None and index >= truncate:
+                out += "..."
+                break
+            out += _csv(item, None, truncate, no_arr, no_str)
+        return out
+    if is_message(value):
+        return to_csv(value, truncate, no_arr=no_arr, no_str=no_str)
+    if no_str and isinstance(value, str):
+        return f"<string length: <{len(value)}>>"
+    if isinstance(value, str) and truncate is not None and len(value) > truncate:
+        return value[:truncate] + "..."
+    if isinstance(value, bytes) and truncate is not None and len(value) > truncate:
+        return str(value[:truncate] + b"...")
+    return str(value)
