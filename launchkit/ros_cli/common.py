@@ -182,10 +182,12 @@ def node_names(tokens: Iterable[Token], include_hidden: bool) -> list[str]:
 NODE_WAIT = 3.0
 
 
-def wait_for_node(node: Node, name: str, include_hidden: bool = True) -> None:
-    """Return once node ``name`` is in the graph; a usage error if it is not after
-    :data:`NODE_WAIT` seconds."""
-    deadline = time.monotonic() + NODE_WAIT
+def wait_for_node(
+    node: Node, name: str, include_hidden: bool = True, timeout: float = NODE_WAIT
+) -> None:
+    """Return once node ``name`` is in the graph; a usage error if it is not after ``timeout``
+    seconds (:data:`NODE_WAIT` at least)."""
+    deadline = time.monotonic() + max(timeout, NODE_WAIT)
     while name not in node_names(graph_tokens(node), include_hidden):
         if time.monotonic() > deadline:
             raise CliUsageError(
@@ -233,4 +235,14 @@ def message_filter(text: str) -> Callable[[Any], bool]:
         raise CliUsageError(
             f"--filter {text!r}: {error.msg}", expected="a Python expression of m"
         ) from None
-    return lambda m: bool(eval(code, {}, {"m": m}))
+
+    def keep(m: Any) -> bool:
+        try:
+            return bool(eval(code, {}, {"m": m}))
+        except Exception as error:  # the user's expression failed on this message
+            raise CliUsageError(
+                f"--filter {text!r}: {type(error).__name__}: {error}",
+                expected="an expression of m, the message (or the field --field selects)",
+            ) from None
+
+    return keep

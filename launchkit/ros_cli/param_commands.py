@@ -77,7 +77,13 @@ def _node_verb(sub: Any, name: str, help_text: str, run: Any) -> argparse.Argume
 
 def _common(parser: argparse.ArgumentParser, run: Any) -> None:
     parser.add_argument("--include-hidden-nodes", action="store_true")
-    parser.add_argument("--timeout", type=int, default=1, help=argparse.SUPPRESS)
+    parser.add_argument(
+        "--timeout",
+        metavar="N",
+        type=int,
+        default=1,
+        help="wait up to N seconds for the node to appear (at least 3)",
+    )
     add_router_option(parser)
     parser.set_defaults(run=run)
 
@@ -87,7 +93,7 @@ def _list(args: argparse.Namespace) -> int:
     with cli_node(args) as node:
         if args.node_name:
             targets = [absolute_node_name(args.node_name)]
-            wait_for_node(node, targets[0], args.include_hidden_nodes)
+            wait_for_node(node, targets[0], args.include_hidden_nodes, args.timeout)
         else:
             targets = sorted(set(node_names(graph_tokens(node), args.include_hidden_nodes)))
         for target in targets:
@@ -105,7 +111,7 @@ def _list(args: argparse.Namespace) -> int:
 
 def _target(args: argparse.Namespace, node: Any) -> ParameterClient:
     target = absolute_node_name(args.node_name)
-    wait_for_node(node, target, args.include_hidden_nodes)
+    wait_for_node(node, target, args.include_hidden_nodes, args.timeout)
     return ParameterClient(node, target)
 
 

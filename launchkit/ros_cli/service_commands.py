@@ -17,6 +17,8 @@ from launchkit.ros_cli.common import (
     normalize_topic,
 )
 
+_GRAPH_SETTLES = 1.0  # seconds
+
 
 def add_parser(commands: Any) -> None:
     """Register the ``service`` verbs."""
@@ -108,7 +110,8 @@ def _call(args: argparse.Namespace) -> int:
     name = normalize_topic(args.service_name)
     with cli_node(args) as node:
         client = node.create_client(srv, name)
-        if not client.service_is_ready():
+        # a fresh node learns the graph in a moment: say "waiting" only when that was not it
+        if not client.wait_for_service(timeout_sec=_GRAPH_SETTLES):
             print("waiting for service to become available...", flush=True)
             if not client.wait_for_service(timeout_sec=args.timeout):
                 if not node.context.ok():  # Ctrl-C while waiting

@@ -162,7 +162,7 @@ def test_run_pkg_executable_runs_it_as_ros2_run_does(tmp_path: Path, ament_prefi
     assert prefixed.stdout == f"via {ament_prefix}/lib/amentpkg/tool\n"
     # a package's launch file of that name comes first, as `launchkit run PKG FILE` always did
     twin = ament_prefix / "lib" / "amentpkg" / "hello.launch.xml"
-    twin.write_text('#!/bin/sh\necho the executable\n')
+    twin.write_text("#!/bin/sh\necho the executable\n")
     twin.chmod(0o755)
     launched = launchkit("run", "amentpkg", "hello.launch.xml", cwd=tmp_path, env=env)
     assert "from ament" in launched.stdout and "the executable" not in launched.stdout
