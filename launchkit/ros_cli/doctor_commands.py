@@ -82,12 +82,11 @@ def _rclpy() -> Outcome:
 
 def rclpy_choice() -> tuple[str, str]:
     """Which rclpy the processes launchkit starts get (``launchkit`` or ``ros``), and why."""
-    try:
-        face = importlib.import_module("launchkit.ros.face")
-    except ImportError:  # a launchkit without the rclpy face: only launchkit.ros
-        return "launchkit", "launchkit.ros (no rclpy face in this version)"
-    choice = str(face.choose(os.environ))
-    return choice, "LAUNCHKIT_RCLPY or a sourced ROS 2 install decides"
+    # the choice is launchkit.ros.face.choose's, where this version has the rclpy face
+    choose = getattr(importlib.import_module("launchkit.ros.face"), "choose", None)
+    if choose is None:
+        return "launchkit", "launchkit.ros; this version has no rclpy face"
+    return str(choose(os.environ)), "LAUNCHKIT_RCLPY or a sourced ROS 2 install decides"
 
 
 def _packages() -> Outcome:
