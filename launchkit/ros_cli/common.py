@@ -148,6 +148,12 @@ def names_and_types(
     return {name: sorted(found[name]) for name in sorted(found)}
 
 
+def print_names(found: dict[str, list[str]], show_types: bool) -> None:
+    """One name a line, with ``[type, ...]`` after it when asked (``topic list -t``)."""
+    for name, types in found.items():
+        print(f"{name} [{', '.join(types)}]" if show_types else name)
+
+
 # An action NAME is served on NAME/_action/{send_goal,cancel_goal,get_result} and published on
 # NAME/_action/{feedback,status}; rcl_action finds actions by their feedback topic.
 _ACTION_FEEDBACK = "/_action/feedback"

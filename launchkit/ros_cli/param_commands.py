@@ -19,6 +19,7 @@ from launchkit.ros_cli.common import (
 )
 from launchkit.ros_cli.parameter_values import (
     TYPE_NAMES,
+    NoParameterServices,
     ParameterClient,
     python_value,
     value_from_text,
@@ -98,7 +99,11 @@ def _list(args: argparse.Namespace) -> int:
             targets = sorted(set(node_names(graph_tokens(node), args.include_hidden_nodes)))
         for target in targets:
             client = ParameterClient(node, target)
-            names = sorted(client.names(args.param_prefixes))
+            try:
+                names = sorted(client.names(args.param_prefixes))
+            except NoParameterServices as missing:  # said, and the next node listed
+                print(missing.format().removeprefix("error: "))
+                continue
             if pattern is not None:
                 names = [name for name in names if pattern.match(name)]
             if not args.node_name and names:

@@ -10,6 +10,7 @@ from typing import Any
 import yaml
 
 from launchkit.errors import Location, UserError
+from launchkit.ros.params import flatten
 from launchkit.ros_cli.parameter_values import value_from_text
 
 _WILDCARD = "/**"
@@ -82,15 +83,5 @@ def parameters_in_file(path: str, node: str, use_wildcard: bool) -> dict[str, An
                 where,
                 expected=f"{key}: {{ros__parameters: {{name: value}}}}",
             )
-        values.update(_flatten(section["ros__parameters"] or {}, ""))
+        values.update(flatten(section["ros__parameters"] or {}))
     return {name: value_from_text(str(value)) for name, value in values.items()}
-
-
-def _flatten(parameters: dict[str, Any], prefix: str) -> dict[str, Any]:
-    out: dict[str, Any] = {}
-    for key, value in parameters.items():
-        if isinstance(value, dict):
-            out.update(_flatten(value, f"{prefix}{key}{_SEPARATOR}"))
-        else:
-            out[f"{prefix}{key}"] = value
-    return out

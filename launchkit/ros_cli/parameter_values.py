@@ -87,6 +87,10 @@ def _snake(name: str) -> str:
     return "".join("_" + c.lower() if c.isupper() else c for c in name).lstrip("_")
 
 
+class NoParameterServices(RuntimeLaunchError):
+    """A node that does not answer on its parameter services (it has none, or is gone)."""
+
+
 class ParameterClient:
     """The parameter services of node ``target``, called from the command's ``node``."""
 
@@ -99,7 +103,7 @@ class ParameterClient:
         name = f"{self.target}/{_snake(service)}"
         client = self.node.create_client(srv, name)
         if not client.wait_for_service(timeout_sec=_SERVICE_WAIT):
-            raise RuntimeLaunchError(
+            raise NoParameterServices(
                 f"Wait for service timed out waiting for parameter services for node {self.target}"
             )
         try:

@@ -15,6 +15,7 @@ from launchkit.ros_cli.common import (
     graph_once,
     names_and_types,
     normalize_topic,
+    print_names,
 )
 
 _GRAPH_SETTLES = 1.0  # seconds
@@ -65,22 +66,17 @@ def _list(args: argparse.Namespace) -> int:
     if args.count_services:
         print(len(services))
         return 0
-    for name, types in services.items():
-        print(f"{name} [{', '.join(types)}]" if args.show_types else name)
+    print_names(services, args.show_types)
     return 0
 
 
 def _find(args: argparse.Namespace) -> int:
-    found = [
-        name
-        for name, types in _services(args, args.include_hidden_services).items()
-        if args.service_type in types
-    ]
+    services = _services(args, args.include_hidden_services)
+    found = {name: types for name, types in services.items() if args.service_type in types}
     if args.count_services:
         print(len(found))
         return 0
-    for name in found:
-        print(name)
+    print_names(found, False)
     return 0
 
 

@@ -17,6 +17,7 @@ from launchkit.ros_cli.common import (
     graph_once,
     names_and_types,
     normalize_topic,
+    print_names,
 )
 from launchkit.ros_cli.qos_options import add_qos_arguments
 
@@ -31,24 +32,23 @@ def _positive_float(text: str) -> float:
     return value
 
 
-def _positive_int(text: str) -> int:
-    try:
-        value = int(text)
-    except ValueError:
-        value = -1
-    if value <= 0:
-        raise argparse.ArgumentTypeError("value must be a positive integer")
-    return value
+def _int_at_least(minimum: int) -> Any:
+    """An argparse type: an integer of at least ``minimum``."""
+
+    def parse(text: str) -> int:
+        try:
+            value = int(text)
+        except ValueError:
+            value = minimum - 1
+        if value < minimum:
+            raise argparse.ArgumentTypeError(f"value must be an integer >= {minimum}")
+        return value
+
+    return parse
 
 
-def _nonnegative_int(text: str) -> int:
-    try:
-        value = int(text)
-    except ValueError:
-        value = -1
-    if value < 0:
-        raise argparse.ArgumentTypeError("value must be a non-negative integer")
-    return value
+_positive_int = _int_at_least(1)
+_nonnegative_int = _int_at_least(0)
 
 
 def _lazy(module: str, function: str) -> Any:
@@ -174,22 +174,17 @@ def _list(args: argparse.Namespace) -> int:
                     lines.append(f" * {name} [{', '.join(types)}] {count} {noun}{plural}")
             print("\n".join(lines) + "\n")
         return 0
-    for name, types in topics.items():
-        print(f"{name} [{', '.join(types)}]" if args.show_types else name)
+    print_names(topics, args.show_types)
     return 0
 
 
 def _find(args: argparse.Namespace) -> int:
-    found = [
-        name
-        for name, types in _topics(graph_once(args), args.include_hidden_topics).items()
-        if args.topic_type in types
-    ]
+    topics = _topics(graph_once(args), args.include_hidden_topics)
+    found = {name: types for name, types in topics.items() if args.topic_type in types}
     if args.count_topics:
         print(len(found))
         return 0
-    for name in found:
-        print(name)
+    print_names(found, False)
     return 0
 
 

@@ -5,27 +5,21 @@ from __future__ import annotations
 
 import os
 import subprocess
-import sys
 from collections.abc import Iterator
 from contextlib import contextmanager
+from pathlib import Path
 
 from ros_helpers import NODES_DIR, Child, free_port
 
 from launchkit.ros.router import start_router
+from tests.engine.launcher import run_launchkit
 
 
 def launchkit(
-    *args: str, timeout: float = 60, env: dict[str, str] | None = None, stdin: str | None = None
+    *args: str, env: dict[str, str] | None = None, stdin: str | None = None
 ) -> subprocess.CompletedProcess[str]:
     """Run ``launchkit ARGS`` to completion, in this process's environment plus ``env``."""
-    return subprocess.run(
-        [sys.executable, "-m", "launchkit", *args],
-        capture_output=True,
-        text=True,
-        timeout=timeout,
-        input=stdin,
-        env={**os.environ, **(env or {})},
-    )
+    return run_launchkit(*args, cwd=Path.cwd(), env=env, stdin=stdin)
 
 
 @contextmanager

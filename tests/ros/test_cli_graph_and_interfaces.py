@@ -71,6 +71,12 @@ def test_node_list_and_info(graph: list[Child]) -> None:
     client = sections(launchkit("node", "info", "fib_client").stdout)
     assert client["Action Clients"] == ["    /fibonacci: example_interfaces/action/Fibonacci"]
     assert client["Action Servers"] == [""]
+    # nodes without parameter services are said so, and the others listed (ros2 param list)
+    assert launchkit("param", "list").stdout.startswith(
+        "Wait for service timed out waiting for parameter services for node /fib_client\n"
+        "Wait for service timed out waiting for parameter services for node /fib_server\n"
+        "/knobs:\n  count\n"
+    )
     hidden = sections(launchkit("node", "info", "/fib_server", "--include-hidden").stdout)
     assert hidden["Publishers"] == [
         "    /fibonacci/_action/feedback: example_interfaces/action/Fibonacci_FeedbackMessage",
