@@ -128,10 +128,14 @@ def build_parser() -> argparse.ArgumentParser:
     commands.add_parser(
         "agent", help="run this host's share of launches on other hosts (launchkit agent --help)"
     )
+    special = {
+        "pkg": "packages: list, prefix, executables, xml (see launchkit pkg --help)",
+        "doctor": "check the ROS setup, as ros2 doctor (see launchkit doctor --help)",
+        "wtf": "the same as doctor",
+    }
     for name in ROS_COMMANDS:
-        commands.add_parser(
-            name, help=f"ROS {name} tools (see launchkit {name} --help)", add_help=False
-        )
+        what = special.get(name, f"ROS {name} tools (see launchkit {name} --help)")
+        commands.add_parser(name, help=what, add_help=False)
     commands.add_parser("bag", help="record and play rosbag2 bags (see launchkit bag --help)")
     commands.add_parser(
         "build", help="build a ROS 2 workspace's src/ into install/ (see launchkit build --help)"

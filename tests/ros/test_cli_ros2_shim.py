@@ -145,3 +145,19 @@ def test_shell_init_gives_a_shell_ros2(tmp_path: Path) -> None:
     assert "executable 'nope' not found in package 'robot_state_publisher'" in ran.stderr
     init = launchkit("shell-init", env={"PATH": path_without_ros2()}).stdout
     assert init.splitlines()[-1].startswith('export PATH="$PATH":')
+
+
+def test_launchkit_exec_gives_its_executable_a_ros2(tmp_path: Path) -> None:
+    prefix = tmp_path / "install"
+    (prefix / "share" / "ament_index" / "resource_index" / "packages").mkdir(parents=True)
+    (prefix / "share" / "ament_index" / "resource_index" / "packages" / "tools").touch()
+    (prefix / "share" / "tools").mkdir()
+    script = prefix / "lib" / "tools" / "ask"
+    script.parent.mkdir(parents=True)
+    script.write_text("#!/bin/sh\nros2 pkg prefix tools\n")
+    script.chmod(0o755)
+    env = {"AMENT_PREFIX_PATH": str(prefix), "PATH": path_without_ros2()}
+    ran = launchkit("exec", "tools", "ask", env=env)
+    assert ran.stdout == f"{prefix}\n", ran.stderr
+    # and `launchkit run PKG EXEC`, ros2 run's spelling, is the same
+    assert launchkit("run", "tools", "ask", env=env).stdout == f"{prefix}\n"
