@@ -24,7 +24,8 @@ from launchkit.errors import LaunchkitError, UserError, printable
 if TYPE_CHECKING:
     from launchkit.runtime.hooks import SupervisorHooks
 
-#: ``ros2``'s verbs that ``launchkit.ros_cli`` implements (``launchkit <verb> ...``)
+#: ``ros2``'s verbs that ``launchkit.ros_cli`` implements (``launchkit <verb> ...``), and
+#: launchkit's own ``router`` and ``tf``
 ROS_COMMANDS = (
     "topic",
     "node",
@@ -35,6 +36,7 @@ ROS_COMMANDS = (
     "doctor",
     "wtf",
     "router",
+    "tf",
 )
 
 

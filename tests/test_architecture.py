@@ -35,6 +35,7 @@ ALLOWED: dict[str, tuple[str, ...]] = {
                           "launchkit.errors", "launchkit.ros.federation", "launchkit.ros.router"),
     "launchkit.ros": ("launchkit._lazy", "launchkit.envvars", "launchkit.errors",
                       "launchkit.rotations", "launchkit.safe_yaml"),
+    "launchkit.ros.msgs": ("launchkit.envvars", "launchkit.errors", "launchkit.packages"),
     "launchkit.ros_adapter": ("launchkit.description", "launchkit.envvars", "launchkit.errors",
                               "launchkit.ros"),
     "launchkit.ros_cli": ("launchkit._argparse", "launchkit.envvars", "launchkit.errors",

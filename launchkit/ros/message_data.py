@@ -11,7 +11,7 @@ from typing import Any
 import yaml
 
 from launchkit.errors import UserError
-from launchkit.ros.msgs._typestore import typestore_for
+from launchkit.ros.msgs import get_message, message_spec
 
 _BASE, _NAME, _ARRAY, _SEQUENCE = 1, 2, 3, 4
 _INTS = {"byte", "char", "int8", "uint8", "int16", "uint16", "int32", "uint32", "int64", "uint64"}
@@ -23,12 +23,16 @@ class MessageValueError(UserError):
 
 def fields_of(type_name: str) -> list[tuple[str, Any]]:
     """(field name, rosbags field description) of a message type, in order."""
-    return list(typestore_for(type_name).fielddefs[type_name][1])
+    return [
+        (field.name, field.desc)
+        for field in message_spec(type_name).fields
+        if field.name != "structure_needs_at_least_one_member"
+    ]
 
 
 def constants_of(type_name: str) -> list[tuple[str, str, Any]]:
     """(name, base type, value) of a message type's constants."""
-    return list(typestore_for(type_name).fielddefs[type_name][0])
+    return [(c.name, c.base, c.value) for c in message_spec(type_name).constants]
 
 
 #: what builds a ``builtin_interfaces/msg/Time`` of the current time (``'now'`` and a header's
@@ -68,7 +72,7 @@ def mentions_now(data: Any) -> bool:
 
 def build(type_name: str, data: Any, path: str, now: Now | None = None) -> Any:
     """A message of ``type_name`` with the fields in the mapping ``data`` set (checked)."""
-    cls = _message_class(type_name)
+    cls = get_message(type_name)
     if not isinstance(data, dict):
         raise MessageValueError(
             f"{path}: got {data!r}, expected a mapping of {type_name} fields "
@@ -94,7 +98,7 @@ def _convert(desc: Any, value: Any, path: str, now: Now | None) -> Any:
         if now is not None and detail == _TIME and value == "now":
             return now()
         if now is not None and detail == _HEADER and value == "auto":
-            return _message_class(_HEADER)(stamp=now())
+            return get_message(_HEADER)(stamp=now())
         return build(detail, value, path, now)
     sub, length = detail
     if not isinstance(value, list):
@@ -104,10 +108,6 @@ def _convert(desc: Any, value: Any, path: str, now: Now | None) -> Any:
     if kind == _SEQUENCE and length and len(value) > length:
         raise MessageValueError(f"{path}: got {len(value)} items, expected at most {length}")
     return [_convert(sub, v, f"{path}[{i}]", now) for i, v in enumerate(value)]
-
-
-def _message_class(type_name: str) -> Any:
-    return typestore_for(type_name).types[type_name]
 
 
 def _base(base: str, value: Any, path: str) -> Any:

@@ -78,12 +78,15 @@ def is_message(value: Any) -> bool:
     return isinstance(name, str) and not isinstance(value, type)
 
 
+def _field_types(msg: Any) -> list[tuple[str, Any]]:
+    """(name, field description) of each field of ``msg``."""
+    return [(n, d) for n, d in fields_of(message_type_name(msg)) if n != _PLACEHOLDER]
+
+
 def _fields(msg: Any) -> list[tuple[str, Any, Any]]:
     """(name, field description, value as rosidl holds it) of each field of ``msg``."""
     return [
-        (name, desc, rosidl_value(getattr(msg, name), desc))
-        for name, desc in fields_of(message_type_name(msg))
-        if name != _PLACEHOLDER
+        (name, desc, rosidl_value(getattr(msg, name), desc)) for name, desc in _field_types(msg)
     ]
 
 
@@ -119,6 +122,14 @@ def value_text(value: Any, desc: Any) -> str:
 
 
 # -- YAML and CSV (rosidl_runtime_py.convert) -----------------------------------------------------
+# An array or sequence is cut before it is converted: an image's data is millions of items.
+
+
+def _held_items(raw: Any, desc: Any, truncate: int | None) -> tuple[Any, bool]:
+    """The first ``truncate`` items of an array or sequence field as rosidl holds them, and
+    whether there were more."""
+    cut = truncate is not None and len(raw) > truncate
+    return rosidl_value(raw[:truncate] if cut else raw, desc), cut
 
 
 def to_data(
@@ -132,12 +143,23 @@ def to_data(
     byte values and sequences longer than ``truncate`` cut with ``...``; with ``no_arr`` each
     array or sequence replaced by a summary of its type and length, with ``no_str`` each string
     by its length."""
-    return {
-        name: _data(value, desc, truncate, no_arr, no_str) for name, desc, value in _fields(msg)
-    }
+    out: dict[str, Any] = {}
+    for name, desc in _field_types(msg):
+        raw = getattr(msg, name)
+        if desc[0] in (_ARRAY, _SEQUENCE):
+            if no_arr:
+                out[name] = _array_summary(len(raw), desc)
+                continue
+            held, cut = _held_items(raw, desc, truncate)
+            items = [_data(_plain(v), truncate, no_arr, no_str) for v in held]
+            out[name] = [*items, "..."] if cut else items
+        else:
+            out[name] = _data(rosidl_value(raw, desc), truncate, no_arr, no_str)
+    return out
 
 
-def _data(value: Any, desc: Any, truncate: int | None, no_arr: bool, no_str: bool) -> Any:
+def _data(value: Any, truncate: int | None, no_arr: bool, no_str: bool) -> Any:
+    """One value (a field's, or an item's of an array) as ``_convert_value`` converts it."""
     if isinstance(value, bytes):  # a byte value, shown as characters
         cut = truncate is not None and len(value) > truncate
         text = "".join(chr(c) for c in (value[:truncate] if cut else value))
@@ -146,12 +168,6 @@ def _data(value: Any, desc: Any, truncate: int | None, no_arr: bool, no_str: boo
         if no_str:
             return f"<string length: <{len(value)}>>"
         return value[:truncate] + "..." if truncate is not None and len(value) > truncate else value
-    if isinstance(value, (list, array.array, np.ndarray)):
-        if no_arr and desc is not None:
-            return _array_summary(value, desc)
-        items = list(value[:truncate] if truncate is not None else value)
-        data = [_data(_plain(v), None, truncate, no_arr, no_str) for v in items]
-        return [*data, "..."] if truncate is not None and len(value) > truncate else data
     if is_message(value):
         return to_data(value, truncate, no_arr=no_arr, no_str=no_str)
     return _plain(value)
@@ -161,14 +177,14 @@ def _plain(value: Any) -> Any:
     return value.item() if isinstance(value, np.generic) else value
 
 
-def _array_summary(value: Any, desc: Any) -> str:
+def _array_summary(length: int, desc: Any) -> str:
     kind, (element, bound) = desc
     name = _element_type_name(element)
     if kind == _ARRAY:
         return f"<array type: {name}[{bound}]>"
     if bound:
-        return f"<sequence type: {name}[{bound}], length: {len(value)}>"
-    return f"<sequence type: {name}, length: {len(value)}>"
+        return f"<sequence type: {name}[{bound}], length: {length}>"
+    return f"<sequence type: {name}, length: {length}>"
 
 
 def _element_type_name(element: Any) -> str:
@@ -204,22 +220,32 @@ def to_csv(
 ) -> str:
     """A message as ``ros2 topic echo --csv`` prints it (``message_to_csv``): every field,
     nested ones flattened, separated by commas."""
-    return ",".join(_csv(value, desc, truncate, no_arr, no_str) for _, desc, value in _fields(msg))
+    parts = []
+    for name, desc in _field_types(msg):
+        raw = getattr(msg, name)
+        if desc[0] not in (_ARRAY, _SEQUENCE):
+            parts.append(_csv(rosidl_value(raw, desc), truncate, no_arr, no_str))
+        elif no_arr:
+            parts.append(_array_summary(len(raw), desc))
+        else:
+            held, cut = _held_items(raw, desc, truncate)
+            items = [_csv(_plain(v), truncate, no_arr, no_str) for v in held]
+            parts.append(_csv_join([*items, "..."] if cut else items))
+    return _csv_join(parts)
 
 
-def _csv(value: Any, desc: Any, truncate: int | None, no_arr: bool, no_str: bool) -> str:
-    if isinstance(value, (list, array.array, np.ndarray)):
-        if no_arr and desc is not None:
-            return _array_summary(value, desc)
-        out = ""
-        for index, item in enumerate(value):
-            if out:
-                out += ","
-            if truncate is not None and index >= truncate:
-                out += "..."
-                break
-            out += _csv(item, None, truncate, no_arr, no_str)
-        return out
+def _csv_join(parts: list[str]) -> str:
+    """Parts joined as message_to_csv joins them: a comma only after something (so an empty
+    first part has none after it, as ros2 prints it)."""
+    out = ""
+    for part in parts:
+        if out:
+            out += ","
+        out += part
+    return out
+
+
+def _csv(value: Any, truncate: int | None, no_arr: bool, no_str: bool) -> str:
     if is_message(value):
         return to_csv(value, truncate, no_arr=no_arr, no_str=no_str)
     if no_str and isinstance(value, str):

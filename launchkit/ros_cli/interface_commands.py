@@ -16,13 +16,7 @@ from launchkit.packages import PackageIndex
 from launchkit.ros.message_data import constants_of, fields_of
 from launchkit.ros.msgs import MessageTypeError, get_message, packages, type_names
 from launchkit.ros_cli.common import CliUsageError
-from launchkit.ros_cli.interface_files import (
-    KINDS,
-    SEPARATOR,
-    file_lines,
-    interface_file,
-    package_interfaces,
-)
+from launchkit.ros_cli.interface_files import KINDS, SEPARATOR, file_lines, interface_file
 
 _BASE, _NAME, _ARRAY, _SEQUENCE = 1, 2, 3, 4
 # the member rosidl gives an empty message (std_srvs/srv/Trigger's request); not in its .msg
@@ -81,19 +75,15 @@ def _kinds(args: argparse.Namespace) -> list[str]:
     return chosen or list(KINDS)
 
 
-def known_interfaces(index: PackageIndex) -> dict[str, set[str]]:
-    """``{kind: {pkg/kind/Name, ...}}``: the type store's and every package's interface files."""
-    # the type store lists messages and services (its actions come with the msgs layer's own
-    # interface files, which are also files of their packages)
-    known = {kind: set(type_names(kind)) if kind != "action" else set() for kind in KINDS}
-    for package in index.names():
-        for kind, names in package_interfaces(package, index).items():
-            known[kind].update(names)
-    return known
+def known_interfaces() -> dict[str, set[str]]:
+    """``{kind: {pkg/kind/Name, ...}}``: the built-in types and those of every package's
+    interface files (``ros2 interface list`` hides names with an ``_``: a service's or an
+    action's parts are not listed either)."""
+    return {kind: set(type_names(kind, discover=True)) for kind in KINDS}
 
 
 def _list(args: argparse.Namespace) -> int:
-    known = known_interfaces(PackageIndex())
+    known = known_interfaces()
     for kind in _kinds(args):
         print(f"{_TITLES[kind]}:")
         for name in sorted(known[kind]):
@@ -102,7 +92,7 @@ def _list(args: argparse.Namespace) -> int:
 
 
 def _packages(args: argparse.Namespace) -> int:
-    known = known_interfaces(PackageIndex())
+    known = known_interfaces()
     # one kind only, the first flag given, as ros2 interface packages takes them
     chosen = _kinds(args)[:1] if len(_kinds(args)) < len(KINDS) else list(KINDS)
     found = {name.split("/", 1)[0] for kind in chosen for name in known[kind]}
@@ -114,7 +104,7 @@ def _packages(args: argparse.Namespace) -> int:
 def _package(args: argparse.Namespace) -> int:
     index = PackageIndex()
     package = args.package_name
-    known = known_interfaces(index)
+    known = known_interfaces()
     names = sorted(
         name for kind in _kinds(args) for name in known[kind] if name.split("/")[0] == package
     )
@@ -139,7 +129,8 @@ def _resolve(text: str, index: PackageIndex) -> str:
             f"Invalid name '{text}'", expected="pkg/msg/Name, pkg/srv/Name or pkg/action/Name"
         )
     for name in candidates:
-        if interface_file(name, index) is not None or _in_store(name):
+        # the type store reads a package's file too, and says where a malformed one is wrong
+        if _in_store(name) or interface_file(name, index) is not None:
             return name
     raise CliUsageError(
         f"unknown interface type '{text}'",

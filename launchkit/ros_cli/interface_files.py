@@ -52,23 +52,6 @@ def interface_file(type_name: str, index: PackageIndex) -> Path | None:
     return path if path.is_file() else None
 
 
-def package_interfaces(package: str, index: PackageIndex) -> dict[str, list[str]]:
-    """``{kind: [pkg/kind/Name, ...]}`` of the interface files a package has (names with an
-    ``_`` left out, as ``ros2 interface`` leaves them out)."""
-    try:
-        share = index.share_dir(package)
-    except PackageNotFoundError:
-        return {}
-    found: dict[str, list[str]] = {}
-    for kind in KINDS:
-        folder = share / kind
-        if folder.is_dir():
-            names = [p.stem for p in folder.glob(f"*.{kind}") if "_" not in p.stem]
-            if names:
-                found[kind] = sorted(f"{package}/{kind}/{n}" for n in names)
-    return found
-
-
 class Line:
     """One line of an interface file, read as ``ros2 interface show`` reads it."""
 

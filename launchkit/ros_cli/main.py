@@ -1,5 +1,6 @@
-"""``launchkit topic|node|service|param|interface|pkg|doctor|router``: the ROS 2 command-line
-verbs (``ros2 <verb> ...`` as ``launchkit <verb> ...``), their argument parsing and dispatch.
+"""``launchkit topic|node|service|param|interface|pkg|doctor|router|tf``: the ROS 2
+command-line verbs (``ros2 <verb> ...`` as ``launchkit <verb> ...``), their argument parsing and
+dispatch.
 
 Each family is one module with an ``add_parser(commands)`` that registers its verbs, each verb's
 ``run(args) -> int`` set as the parser default; a new family (``action``) is one more line in
@@ -27,6 +28,7 @@ FAMILIES = {
     "doctor": "launchkit.ros_cli.doctor_commands",
     "wtf": "launchkit.ros_cli.doctor_commands",
     "router": "launchkit.ros_cli.router_commands",
+    "tf": "launchkit.ros_cli.tf_commands",
 }
 
 
