@@ -20,27 +20,13 @@ import yaml
 from launchkit.ros.message_data import fields_of
 from launchkit.ros.msgs import message_type_name
 
+# rosidl_adapter's .msg -> IDL names, and the array type codes of rosidl's numeric sequences
+from launchkit.ros.msgs._spec import IDL_NAMES, TYPE_CODES
+
 _BASE, _NAME, _ARRAY, _SEQUENCE = 1, 2, 3, 4
 TRUNCATE_LENGTH = 128
 #: the member rosidl gives an empty message; its Python classes do not show it
 _PLACEHOLDER = "structure_needs_at_least_one_member"
-
-#: rosidl keeps numeric sequences in an ``array.array`` of this type code, and fixed-size
-#: numeric arrays in a numpy array of this dtype (``char`` is ``uint8`` by then)
-_TYPECODES = {
-    "float32": "f",
-    "float64": "d",
-    "int8": "b",
-    "uint8": "B",
-    "int16": "h",
-    "uint16": "H",
-    "int32": "i",
-    "uint32": "I",
-    "int64": "q",
-    "uint64": "Q",
-}
-#: the IDL names rosidl_parser gives the basic types of a ``.msg`` file (``--no-arr`` shows them)
-_IDL_NAMES = {"float32": "float", "float64": "double", "bool": "boolean", "byte": "octet"}
 
 
 def rosidl_value(value: Any, desc: Any) -> Any:
@@ -54,7 +40,7 @@ def rosidl_value(value: Any, desc: Any) -> Any:
         return value
     element, _ = detail
     base = element[1][0] if element[0] == _BASE else None
-    code = _TYPECODES.get(base or "")
+    code = TYPE_CODES.get(IDL_NAMES.get(base or "", ""))
     if code is not None and kind == _SEQUENCE:
         return array.array(code, [_scalar(v, base or "") for v in value])
     if code is not None:
@@ -194,7 +180,7 @@ def _element_type_name(element: Any) -> str:
     base = str(detail[0])
     if base in ("string", "wstring"):
         return base
-    return _IDL_NAMES.get(base, base)
+    return IDL_NAMES.get(base, base)
 
 
 def to_yaml(
