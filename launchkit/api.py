@@ -96,13 +96,17 @@ def _context(
 def launch_environment(environ: Mapping[str, str]) -> dict[str, str]:
     """The environment a launch starts with: ``environ``, with the folder of launchkit's own
     scripts (``xacro`` beside ``launchkit``) at the end of ``PATH`` when it is not there, so
-    ``Command(['xacro ', ...])`` works from an environment that was not activated."""
+    ``Command(['xacro ', ...])`` works from an environment that was not activated; and after it
+    a ``ros2`` for launch files that call one, when none is installed
+    (:mod:`launchkit.ros_cli.ros2_shim`)."""
+    from launchkit.ros_cli.ros2_shim import with_ros2
+
     environment = dict(environ)
     scripts = sysconfig.get_path("scripts")
     folders = environment.get("PATH", os.defpath).split(os.pathsep)
     if scripts and scripts not in folders:
         environment["PATH"] = os.pathsep.join([*folders, scripts])
-    return environment
+    return with_ros2(environment)
 
 
 def dry_run(

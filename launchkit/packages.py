@@ -172,16 +172,6 @@ class PackageIndex:
             return FoundPackage(name, stand_in.share, stand_in.share, "stand-in", stand_in)
         return found
 
-    def origin(self, name: str) -> str:
-        """Where ``name`` comes from, as ``launchkit pkg list`` says it: ``(launchkit
-        stand-in)``, ``(Python distribution)`` or the ament prefix."""
-        found = self.find(name)
-        if found.source == "stand-in":
-            return "(launchkit stand-in)"
-        if found.source == "python":
-            return "(Python distribution)"
-        return str(found.prefix)
-
     def describe_search_path(self) -> str:
         """Human-readable list of the places packages are searched for."""
         places = [f"entry points '{ENTRY_POINT_GROUP}' ({len(self.python_packages())} packages)"]
