@@ -8,6 +8,7 @@ import { ImagePanel } from "./image.js";
 import { JointSliders } from "./joints.js";
 import { Scene3D } from "./scene.js";
 import { TfTree } from "./tf.js";
+import { TurtlesimPanel } from "./turtlesim.js";
 
 const $ = (id) => document.getElementById(id);
 
@@ -163,6 +164,7 @@ function onMessage(message) {
   }
   for (const display of state.displays) if (display.enabled && display.topics().includes(topic)) display.onMessage(topic, type, msg);
   sliders.onMessage(topic, type, msg);
+  turtlesim.onMessage(topic, type, msg);
   if (topic === state.watched) {
     const shown = type === "std_msgs/msg/String" && msg.data.length > 2000 ? { data: msg.data.slice(0, 2000) + "…" } : msg.fields || msg;
     $("echo").textContent = `${topic} (${type})\n${JSON.stringify(shown, null, 1)}`;
@@ -211,7 +213,7 @@ const images = new ImagePanel(ctx, $("image-panel"), $("image-topic"), $("image"
 const sliders = new JointSliders(ctx, $("joints-panel"), $("joints"), $("joints-topic"), $("joints-center"), $("joints-randomize"));
 ctx.conn = new Connection(url, {
   hello: onHello,
-  topics: (m) => { state.topics = m.topics; images.topicsChanged(m.topics); renderTopics(); },
+  topics: (m) => { state.topics = m.topics; images.topicsChanged(m.topics); turtlesim.topicsChanged(m.topics); renderTopics(); },
   rates: (m) => { state.rates = m.rates; renderTopics(); },
   sliders: (m) => sliders.sliderTopic(m.topic),
   msg: onMessage,
@@ -219,6 +221,7 @@ ctx.conn = new Connection(url, {
   error: (m) => ctx.problem(`server: ${m.message}`),
   state: setConnected,
 });
+const turtlesim = new TurtlesimPanel(ctx, $("view"));
 const cmdVel = new URLSearchParams(location.search).get("cmd_vel") || "/cmd_vel";
 new Drive(ctx, $("drive-pad"), $("drive-speed"), $("drive-topic"), cmdVel);
 // the view needs transforms whatever displays show

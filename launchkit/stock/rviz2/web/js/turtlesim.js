@@ -1,0 +1,282 @@
+// The turtlesim panel: the 500 x 500 world of every turtlesim node of the graph, drawn from the
+// two hidden topics each one publishes (launchkit/stock/turtlesim/scene.py says what they hold):
+// /_turtlesim<node>/scene (background, turtles, the pen strokes since the last snapshot) and
+// /_turtlesim<node>/trails (a PNG snapshot of the trails). The panel appears over the 3D view
+// when the first turtlesim does; it has show() and hide() like the other panels of the page.
+// Tests read window.__turtlesim: what was drawn, and pixels of the picture.
+
+const SCENE = /^\/_turtlesim(\/.+)\/scene$/;
+const TRAILS = (node) => `/_turtlesim${node}/trails`;
+// Shell colours of the turtle images (Jazzy chooses one of 11 images at random per turtle).
+const SHELLS = ["#6b8e23", "#3c8d5a", "#2e7d8c", "#3b6fb6", "#7b5ea7", "#b35c8a",
+  "#c0563b", "#c98a2b", "#8a9a2f", "#4f7f3f", "#5d6d7e"];
+
+// One turtlesim node's picture: its trails layer and what it has drawn into it.
+class World {
+  constructor(node) {
+    this.node = node;
+    this.layer = Object.assign(document.createElement("canvas"), { width: 500, height: 500 });
+    this.session = null;
+    this.snapshot = -1; // the serial of the trails snapshot in the layer
+    this.drawn = 0; // strokes drawn into the layer, counted as the node counts them
+    this.scene = null;
+  }
+
+  reset(session) {
+    this.session = session;
+    this.snapshot = -1;
+    this.drawn = 0;
+    this.layer.getContext("2d").clearRect(0, 0, this.layer.width, this.layer.height);
+  }
+
+  // A scene: draw the strokes the layer does not have yet. Returns how many were drawn.
+  onScene(scene) {
+    if (scene.session !== this.session) this.reset(scene.session);
+    const [width, height] = scene.size;
+    if (this.layer.width !== width || this.layer.height !== height) Object.assign(this.layer, { width, height });
+    this.scene = scene;
+    const count = this.drawStrokes(scene, Math.max(this.drawn, scene.base));
+    this.drawn = Math.max(this.drawn, scene.upto);
+    return count;
+  }
+
+  // A trails snapshot: the layer becomes it, then the strokes after it are drawn again.
+  async onTrails(trails) {
+    if (trails.session !== this.session) this.reset(trails.session);
+    if (trails.serial <= this.snapshot) return false;
+    this.snapshot = trails.serial;
+    const image = trails.png ? await loadImage(`data:image/png;base64,${trails.png}`) : null;
+    if (trails.serial !== this.snapshot || trails.session !== this.session) return false; // a newer one came meanwhile
+    const g = this.layer.getContext("2d");
+    g.clearRect(0, 0, this.layer.width, this.layer.height);
+    if (image) g.drawImage(image, 0, 0);
+    this.drawn = trails.upto;
+    if (this.scene && this.scene.session === this.session && this.scene.base <= trails.upto) {
+      this.drawStrokes(this.scene, trails.upto);
+      this.drawn = Math.max(this.drawn, this.scene.upto);
+    }
+    return true;
+  }
+
+  drawStrokes(scene, from) {
+    const g = this.layer.getContext("2d");
+    let count = 0;
+    for (let i = from; i < scene.upto; i += 1) {
+      const stroke = scene.strokes[i - scene.base];
+      if (!stroke) continue;
+      drawStroke(g, stroke);
+      count += 1;
+    }
+    return count;
+  }
+}
+
+function loadImage(src) {
+  return new Promise((resolve, reject) => {
+    const image = new Image();
+    image.onload = () => resolve(image);
+    image.onerror = () => reject(new Error("a trails snapshot that is not a PNG"));
+    image.src = src;
+  });
+}
+
+// A pen stroke as turtlesim draws it: the pen's width, square ends.
+function drawStroke(g, [x0, y0, x1, y1, r, gr, b, width]) {
+  const length = Math.hypot(x1 - x0, y1 - y0);
+  const [ux, uy] = length > 0 ? [(x1 - x0) / length, (y1 - y0) / length] : [1, 0];
+  const half = width / 2;
+  const [ax, ay, nx, ny] = [ux * half, uy * half, -uy * half, ux * half];
+  g.fillStyle = `rgb(${r}, ${gr}, ${b})`;
+  g.beginPath();
+  g.moveTo(x0 - ax + nx, y0 - ay + ny);
+  g.lineTo(x1 + ax + nx, y1 + ay + ny);
+  g.lineTo(x1 + ax - nx, y1 + ay - ny);
+  g.lineTo(x0 - ax - nx, y0 - ay - ny);
+  g.closePath();
+  g.fill();
+}
+
+// A turtle seen from above, heading along +x, about as big as Jazzy's 45-pixel images.
+function drawTurtle(g, image) {
+  const shell = SHELLS[image % SHELLS.length];
+  g.fillStyle = "#9ccc65";
+  for (const [x, y] of [[9, 11], [9, -11], [-9, 11], [-9, -11]]) {
+    g.beginPath();
+    g.ellipse(x, y, 5, 4, 0, 0, 2 * Math.PI);
+    g.fill();
+  }
+  g.beginPath();
+  g.moveTo(-14, 0);
+  g.lineTo(-20, 2);
+  g.lineTo(-20, -2);
+  g.fill();
+  g.beginPath();
+  g.ellipse(17, 0, 6, 5, 0, 0, 2 * Math.PI);
+  g.fill();
+  g.fillStyle = shell;
+  g.strokeStyle = "#1b3b12";
+  g.lineWidth = 1.5;
+  g.beginPath();
+  g.ellipse(0, 0, 15, 12, 0, 0, 2 * Math.PI);
+  g.fill();
+  g.stroke();
+  g.beginPath();
+  g.moveTo(-7, -6); g.lineTo(7, -6); g.lineTo(7, 6); g.lineTo(-7, 6); g.closePath();
+  g.stroke();
+  g.fillStyle = "#000";
+  for (const y of [-2.5, 2.5]) {
+    g.beginPath();
+    g.arc(20, y, 1.2, 0, 2 * Math.PI);
+    g.fill();
+  }
+}
+
+export class TurtlesimPanel {
+  constructor(ctx, host) {
+    this.ctx = ctx;
+    this.worlds = new Map(); // node name -> World
+    this.current = null;
+    this.shown = false;
+    this.dismissed = false;
+    this.pending = false;
+    this.stats = { scenes: 0, snapshots: 0, strokes: 0, frames: 0, node: null, turtles: [], background: null };
+
+    this.element = Object.assign(document.createElement("section"), { id: "turtlesim-panel", hidden: true });
+    const bar = Object.assign(document.createElement("div"), { className: "turtlesim-bar" });
+    this.title = Object.assign(document.createElement("span"), { textContent: "turtlesim" });
+    this.select = document.createElement("select");
+    this.select.title = "which turtlesim node";
+    this.select.addEventListener("change", () => this.choose(this.select.value));
+    const close = Object.assign(document.createElement("button"), { textContent: "3D view", title: "hide the turtlesim panel" });
+    close.addEventListener("click", () => { this.dismissed = true; this.hide(); });
+    bar.append(this.title, " ", this.select, " ", close);
+    this.canvas = Object.assign(document.createElement("canvas"), { width: 500, height: 500 });
+    this.canvas.setAttribute("aria-label", "turtlesim");
+    this.element.append(bar, this.canvas);
+    this.opener = Object.assign(document.createElement("button"), { id: "turtlesim-open", textContent: "turtlesim", hidden: true });
+    this.opener.addEventListener("click", () => { this.dismissed = false; this.show(); });
+    host.append(this.element, this.opener);
+
+    window.__turtlesim = {
+      stats: this.stats,
+      // [r, g, b, a] of the picture's pixel (x, y), in the world's pixels (y down)
+      pixel: (x, y) => [...this.canvas.getContext("2d").getImageData(x, y, 1, 1).data],
+      show: () => this.show(),
+      hide: () => this.hide(),
+      choose: (node) => this.choose(node),
+      nodes: () => [...this.worlds.keys()],
+    };
+  }
+
+  // The topic list changed: follow the turtlesims that appeared, forget the ones that went.
+  topicsChanged(topics) {
+    const nodes = new Set();
+    for (const { name } of topics) {
+      const match = SCENE.exec(name);
+      if (match) nodes.add(match[1]);
+    }
+    for (const node of nodes) {
+      if (this.worlds.has(node)) continue;
+      this.worlds.set(node, new World(node));
+      this.ctx.conn.want(`/_turtlesim${node}/scene`);
+      this.ctx.conn.want(TRAILS(node));
+    }
+    for (const node of [...this.worlds.keys()]) {
+      if (nodes.has(node)) continue;
+      this.worlds.delete(node);
+      this.ctx.conn.unwant(`/_turtlesim${node}/scene`);
+      this.ctx.conn.unwant(TRAILS(node));
+    }
+    const names = [...this.worlds.keys()].sort();
+    this.select.replaceChildren(...names.map((n) => new Option(n, n)));
+    this.select.hidden = names.length < 2;
+    if (!this.worlds.has(this.current)) this.current = names[0] || null;
+    if (this.current) this.select.value = this.current;
+    this.stats.node = this.current;
+    this.opener.hidden = this.shown || names.length === 0;
+    if (names.length && !this.shown && !this.dismissed) this.show();
+    if (!names.length && this.shown) this.hide();
+    this.requestRender();
+  }
+
+  onMessage(topic, type, msg) {
+    if (type !== "std_msgs/msg/String" || !topic.startsWith("/_turtlesim/")) return;
+    const scene = SCENE.exec(topic);
+    const node = scene ? scene[1] : topic.slice("/_turtlesim".length, -"/trails".length);
+    const world = this.worlds.get(node);
+    if (!world || (!scene && topic !== TRAILS(node))) return;
+    let body;
+    try {
+      body = JSON.parse(msg.data);
+    } catch {
+      this.ctx.problem(`turtlesim: ${topic} is not JSON`);
+      return;
+    }
+    if (scene) {
+      this.stats.scenes += 1;
+      this.stats.strokes += world.onScene(body);
+      this.requestRender();
+    } else {
+      world.onTrails(body).then((applied) => {
+        if (applied) this.stats.snapshots += 1;
+        this.requestRender();
+      }, (error) => this.ctx.problem(`turtlesim: ${error.message}`));
+    }
+  }
+
+  choose(node) {
+    if (!this.worlds.has(node)) return;
+    this.current = node;
+    this.stats.node = node;
+    this.requestRender();
+  }
+
+  show() {
+    this.shown = true;
+    this.element.hidden = false;
+    this.opener.hidden = true;
+    this.requestRender();
+  }
+
+  hide() {
+    this.shown = false;
+    this.element.hidden = true;
+    this.opener.hidden = this.worlds.size === 0;
+  }
+
+  requestRender() {
+    if (this.pending) return;
+    this.pending = true;
+    requestAnimationFrame(() => {
+      this.pending = false;
+      this.render();
+    });
+  }
+
+  render() {
+    const world = this.worlds.get(this.current);
+    const scene = world?.scene;
+    const g = this.canvas.getContext("2d");
+    if (!scene) {
+      g.fillStyle = "#202124";
+      g.fillRect(0, 0, this.canvas.width, this.canvas.height);
+      return;
+    }
+    const [width, height] = scene.size;
+    if (this.canvas.width !== width || this.canvas.height !== height) Object.assign(this.canvas, { width, height });
+    const [r, gr, b] = scene.background;
+    g.fillStyle = `rgb(${r}, ${gr}, ${b})`;
+    g.fillRect(0, 0, width, height);
+    g.drawImage(world.layer, 0, 0);
+    const bottom = (height - 1) / scene.meter; // y grows up in the world, down in the picture
+    for (const turtle of scene.turtles) {
+      g.save();
+      g.translate(turtle.x * scene.meter, (bottom - turtle.y) * scene.meter);
+      g.rotate(-turtle.theta);
+      drawTurtle(g, turtle.image);
+      g.restore();
+    }
+    this.title.textContent = `turtlesim ${world.node}`;
+    Object.assign(this.stats, { frames: this.stats.frames + 1, turtles: scene.turtles, background: scene.background });
+  }
+}
