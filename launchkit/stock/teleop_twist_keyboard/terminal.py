@@ -51,7 +51,9 @@ class KeyReader:
 
     def read_key(self, timeout: float | None = None) -> str | None:
         """The next key pressed, or None when ``timeout`` seconds pass without one."""
-        tty.setraw(self.fd)
+        # TCSANOW, not setraw's default TCSAFLUSH: keys typed ahead (the rest of an arrow key's
+        # three bytes) must not be thrown away
+        tty.setraw(self.fd, termios.TCSANOW)
         try:
             ready, _, _ = select.select([self.fd], [], [], timeout)
             if not ready:
