@@ -2,11 +2,11 @@
 
 ``launchkit exec turtlesim turtlesim_node`` prints ``viewer: http://127.0.0.1:8765/ (open it in
 a browser)``, as a robot launch prints the rviz2 stand-in's. It is the rviz2 stand-in's own
-server (:mod:`launchkit.stock.rviz2`), run in this process for a hidden node of its own
-(``/_turtlesim_viewer``: left out of ``node list`` as ROS 2 leaves hidden nodes out, made without
-the process's ``--ros-args`` so a ``-r __node:=`` renames only turtlesim). Its page shows the
-turtlesim panel as soon as the picture's topics (:mod:`.scene`) appear, and every other topic of
-the graph as the viewer always does.
+server (:mod:`launchkit.stock.rviz2`), run in this process for a hidden node of its own beside
+turtlesim's (``/_turtlesim_viewer``: left out of ``node list`` as ROS 2 leaves hidden nodes
+out, and made without the process's ``--ros-args``, which are turtlesim's). Its page shows the
+turtlesim panel as soon as the picture's topics (:mod:`.scene`) appear, and every other topic
+of the graph as the viewer always does.
 
 A viewer already listening on the port (a second turtlesim, or a robot launch's rviz2) shows
 every turtlesim of the graph, so the node then only says where it is. The port is
@@ -30,7 +30,6 @@ from launchkit.stock.rviz2.page_session import SUBPROTOCOL
 from launchkit.stock.rviz2.ros_link import RosLink
 from launchkit.stock.rviz2.server import ViewerServer
 
-NODE_NAME = "_turtlesim_viewer"
 ADDRESS = "127.0.0.1"
 #: Seconds to wait for a busy port's server to greet as a launchkit viewer.
 PROBE_TIMEOUT = 2.0
@@ -55,7 +54,8 @@ def start(port: int, owner: ros.Node) -> EmbeddedViewer | None:
     """Serve the viewer on ``port`` and announce its address; None when a viewer already
     serves there (announced too) or the port cannot be used (``owner`` warns why)."""
     node = ros.Node(
-        NODE_NAME,
+        f"_{owner.get_name()}_viewer",
+        namespace=owner.get_namespace(),
         context=owner.context,
         use_global_arguments=False,
         start_parameter_services=False,

@@ -11,63 +11,86 @@ const TRAILS = (node) => `/_turtlesim${node}/trails`;
 const SHELLS = ["#6b8e23", "#3c8d5a", "#2e7d8c", "#3b6fb6", "#7b5ea7", "#b35c8a",
   "#c0563b", "#c98a2b", "#8a9a2f", "#4f7f3f", "#5d6d7e"];
 
-// One turtlesim node's picture: its trails layer and what it has drawn into it.
+// One turtlesim node's picture: its trails as pixels, and what it has drawn into them. Strokes are
+// filled pixel by pixel as turtlesim draws them (not anti-aliased), so the trails are the same
+// whether they came from a snapshot or were drawn here.
 class World {
   constructor(node) {
     this.node = node;
+    this.trails = new ImageData(500, 500);
     this.layer = Object.assign(document.createElement("canvas"), { width: 500, height: 500 });
+    this.stale = false; // the layer does not show the trails yet
     this.session = null;
     this.snapshot = -1; // the serial of the trails snapshot in the layer
     this.drawn = 0; // strokes drawn into the layer, counted as the node counts them
     this.scene = null;
   }
 
-  reset(session) {
+  reset(session, width = this.trails.width, height = this.trails.height) {
     this.session = session;
     this.snapshot = -1;
     this.drawn = 0;
-    this.layer.getContext("2d").clearRect(0, 0, this.layer.width, this.layer.height);
+    this.trails = new ImageData(width, height);
+    Object.assign(this.layer, { width, height });
+    this.stale = true;
   }
 
   // A scene: draw the strokes the layer does not have yet. Returns how many were drawn.
   onScene(scene) {
-    if (scene.session !== this.session) this.reset(scene.session);
     const [width, height] = scene.size;
-    if (this.layer.width !== width || this.layer.height !== height) Object.assign(this.layer, { width, height });
+    if (scene.session !== this.session || width !== this.trails.width || height !== this.trails.height) {
+      this.reset(scene.session, width, height);
+    }
     this.scene = scene;
     const count = this.drawStrokes(scene, Math.max(this.drawn, scene.base));
     this.drawn = Math.max(this.drawn, scene.upto);
     return count;
   }
 
-  // A trails snapshot: the layer becomes it, then the strokes after it are drawn again.
+  // A trails snapshot: the trails become it, then the strokes after it are drawn again.
   async onTrails(trails) {
     if (trails.session !== this.session) this.reset(trails.session);
     if (trails.serial <= this.snapshot) return false;
     this.snapshot = trails.serial;
     const image = trails.png ? await loadImage(`data:image/png;base64,${trails.png}`) : null;
     if (trails.serial !== this.snapshot || trails.session !== this.session) return false; // a newer one came meanwhile
-    const g = this.layer.getContext("2d");
-    g.clearRect(0, 0, this.layer.width, this.layer.height);
-    if (image) g.drawImage(image, 0, 0);
+    const { width, height } = this.trails;
+    if (image) {
+      const scratch = Object.assign(document.createElement("canvas"), { width, height });
+      const g = scratch.getContext("2d");
+      g.drawImage(image, 0, 0);
+      this.trails = g.getImageData(0, 0, width, height);
+    } else {
+      this.trails = new ImageData(width, height);
+    }
     this.drawn = trails.upto;
     if (this.scene && this.scene.session === this.session && this.scene.base <= trails.upto) {
       this.drawStrokes(this.scene, trails.upto);
       this.drawn = Math.max(this.drawn, this.scene.upto);
     }
+    this.stale = true;
     return true;
   }
 
   drawStrokes(scene, from) {
-    const g = this.layer.getContext("2d");
     let count = 0;
     for (let i = from; i < scene.upto; i += 1) {
       const stroke = scene.strokes[i - scene.base];
       if (!stroke) continue;
-      drawStroke(g, stroke);
+      fillStroke(this.trails, stroke);
       count += 1;
     }
+    if (count) this.stale = true;
     return count;
+  }
+
+  // The layer to draw: the trails' pixels, copied in when they changed.
+  picture() {
+    if (this.stale) {
+      this.layer.getContext("2d").putImageData(this.trails, 0, 0);
+      this.stale = false;
+    }
+    return this.layer;
   }
 }
 
@@ -80,20 +103,31 @@ function loadImage(src) {
   });
 }
 
-// A pen stroke as turtlesim draws it: the pen's width, square ends.
-function drawStroke(g, [x0, y0, x1, y1, r, gr, b, width]) {
+// A pen stroke as turtlesim draws it: the pen's width, square ends; every pixel whose centre is
+// inside is set to the pen's colour.
+function fillStroke(pixels, [x0, y0, x1, y1, r, g, b, width]) {
   const length = Math.hypot(x1 - x0, y1 - y0);
   const [ux, uy] = length > 0 ? [(x1 - x0) / length, (y1 - y0) / length] : [1, 0];
   const half = width / 2;
-  const [ax, ay, nx, ny] = [ux * half, uy * half, -uy * half, ux * half];
-  g.fillStyle = `rgb(${r}, ${gr}, ${b})`;
-  g.beginPath();
-  g.moveTo(x0 - ax + nx, y0 - ay + ny);
-  g.lineTo(x1 + ax + nx, y1 + ay + ny);
-  g.lineTo(x1 + ax - nx, y1 + ay - ny);
-  g.lineTo(x0 - ax - nx, y0 - ay - ny);
-  g.closePath();
-  g.fill();
+  const left = Math.max(0, Math.floor(Math.min(x0, x1) - width));
+  const right = Math.min(pixels.width - 1, Math.ceil(Math.max(x0, x1) + width));
+  const top = Math.max(0, Math.floor(Math.min(y0, y1) - width));
+  const bottom = Math.min(pixels.height - 1, Math.ceil(Math.max(y0, y1) + width));
+  const data = pixels.data;
+  for (let py = top; py <= bottom; py += 1) {
+    for (let px = left; px <= right; px += 1) {
+      const dx = px + 0.5 - x0;
+      const dy = py + 0.5 - y0;
+      const along = dx * ux + dy * uy;
+      const across = Math.abs(dy * ux - dx * uy);
+      if (along < -half || along > length + half || across > half) continue;
+      const at = (py * pixels.width + px) * 4;
+      data[at] = r;
+      data[at + 1] = g;
+      data[at + 2] = b;
+      data[at + 3] = 255;
+    }
+  }
 }
 
 // A turtle seen from above, heading along +x, about as big as Jazzy's 45-pixel images.
@@ -267,7 +301,7 @@ export class TurtlesimPanel {
     const [r, gr, b] = scene.background;
     g.fillStyle = `rgb(${r}, ${gr}, ${b})`;
     g.fillRect(0, 0, width, height);
-    g.drawImage(world.layer, 0, 0);
+    g.drawImage(world.picture(), 0, 0);
     const bottom = (height - 1) / scene.meter; // y grows up in the world, down in the picture
     for (const turtle of scene.turtles) {
       g.save();
