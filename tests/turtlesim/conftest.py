@@ -18,7 +18,8 @@ from typing import Any
 
 import pytest
 
-from tests.stock.conftest import free_port
+from tests.stock.conftest import free_port, probe_node
+from tests.stock.conftest import spin_until as stock_spin_until
 
 NODE = "launchkit.stock.turtlesim.turtlesim_node"
 DEADLINE = 20.0
@@ -129,30 +130,15 @@ def programs(router: str) -> Iterator[Callable[..., Program]]:
 @pytest.fixture(scope="module")
 def probe(router: str) -> Iterator[Any]:
     """A node in the test process, on its own context."""
-    import launchkit.ros as ros
-    from launchkit.ros.context import Context
-
-    context = Context()
-    context.init([])
-    node = ros.Node("turtlesim_probe", context=context)
-    try:
+    with probe_node("turtlesim_probe") as node:
         yield node
-    finally:
-        node.destroy_node()
-        context.shutdown()
 
 
 def spin_until(
     node: Any, predicate: Callable[[], bool], what: str, timeout: float = DEADLINE
 ) -> None:
     """Spin ``node`` until ``predicate()``; fail naming ``what`` after ``timeout`` s."""
-    import launchkit.ros as ros
-
-    deadline = time.monotonic() + timeout
-    while not predicate():
-        if time.monotonic() > deadline:
-            raise AssertionError(f"timed out after {timeout} s waiting for {what}")
-        ros.spin_once(node, timeout_sec=0.05)
+    stock_spin_until(node, predicate, what, timeout)
 
 
 def call(node: Any, srv_type: Any, service: str, /, **fields: Any) -> Any:
