@@ -96,14 +96,16 @@ class Program:
 
 
 @pytest.fixture(scope="module")
-def router() -> Iterator[str]:
-    """A router on a free loopback port, announced to children through LAUNCHKIT_ROUTER."""
+def router(tmp_path_factory: pytest.TempPathFactory) -> Iterator[str]:
+    """A router on a free loopback port, announced to children through LAUNCHKIT_ROUTER (and
+    a log folder of the test run for what they start: ``launchkit run`` writes one)."""
     from launchkit.ros.router import start_router
 
     endpoint = f"tcp/127.0.0.1:{free_port()}"
     handle = start_router(endpoint)
     with pytest.MonkeyPatch.context() as patch:
         patch.setenv("LAUNCHKIT_ROUTER", endpoint)
+        patch.setenv("ROS_LOG_DIR", str(tmp_path_factory.mktemp("ros_log")))
         try:
             yield endpoint
         finally:
