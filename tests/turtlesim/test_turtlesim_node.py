@@ -8,6 +8,7 @@ import itertools
 import json
 import math
 import re
+import subprocess
 import time
 from collections.abc import Callable, Iterator
 from typing import Any
@@ -315,3 +316,16 @@ def test_holonomic_turtles_move_sideways(fresh: Program, probe: Any, watch: Any)
         assert (pose.x, pose.theta, pose.linear_velocity) == (CENTRE, 0.0, 1.0)
     finally:
         set_parameter(probe, "holonomic", ParameterValue(type=1, bool_value=False))
+
+
+@pytest.mark.parametrize(
+    ("argument", "words"),
+    [("--bogus", "unrecognized arguments: --bogus"), ("--viewer-port=70000", "70000")],
+)
+def test_a_wrong_argument_is_one_line_and_status_2(argument: str, words: str) -> None:
+    done = subprocess.run(
+        python(NODE, argument), capture_output=True, text=True, timeout=60, stdin=subprocess.DEVNULL
+    )
+    assert done.returncode == 2
+    assert done.stderr.startswith("turtlesim_node: error: ") and words in done.stderr
+    assert len(done.stderr.strip().splitlines()) == 1 and "Traceback" not in done.stderr

@@ -22,7 +22,7 @@ from launchkit.stock.turtlesim.simulator import TurtleSim
 
 class _Parser(argparse.ArgumentParser):
     def error(self, message: str) -> NoReturn:
-        raise UserError(f"turtlesim_node: {message}", expected=self.format_usage().strip())
+        raise UserError(message, expected=self.format_usage().strip())
 
 
 def parse_args(argv: list[str]) -> argparse.Namespace:

@@ -310,7 +310,7 @@ export class TurtlesimPanel {
       drawTurtle(g, turtle.image);
       g.restore();
     }
-    this.title.textContent = `turtlesim ${world.node}`;
+    this.title.textContent = this.select.hidden ? `turtlesim ${world.node}` : "turtlesim"; // else the menu names it
     Object.assign(this.stats, { frames: this.stats.frames + 1, turtles: scene.turtles, background: scene.background });
   }
 }
