@@ -291,7 +291,7 @@ def run(
         context.ros_factory = ros_link
         return supervisor.run(tree.top, context)
     except LaunchkitError as error:
-        output.launch_line("ERROR", "launch", error.format(), screen=False)
+        output.launch_error(error.format(), screen=False)
         raise
     finally:
         remote.close()

@@ -2,8 +2,10 @@
 
 Parsing already rejects unknown tags, attributes and substitutions, malformed substitutions and
 bad literal values. On top of that this module loads every ``<include>`` whose path is known
-without running anything, and checks the command-line arguments against the top file's
-``<arg>`` declarations (required ones present, values among the choices).
+without running anything (one under an ``if``/``unless`` that fails to load is no error: ROS
+reads it the same way for its arguments and reports nothing; the include reports it if and when
+it runs), and checks the command-line arguments against the top file's ``<arg>`` declarations
+(required ones present, values among the choices).
 """
 
 from __future__ import annotations
@@ -107,9 +109,10 @@ def check_tree(
             included = static_path(action, description.path, packages)
             if included is None or included in tree.files:
                 continue
+            always = _always_runs(action, description)
             try:
                 if not is_file(included):
-                    if _always_runs(action, description):
+                    if always:
                         raise LaunchFileError(
                             f"included launch file '{included}' does not exist",
                             action.location,
@@ -118,6 +121,11 @@ def check_tree(
                     continue  # conditional: reported if and when the include runs
                 child = loader.load(included, action.location, action.syntax)
             except LaunchkitError as error:
+                if not always:
+                    # As ROS's look for declared arguments: a file under an if/unless is read
+                    # (a Python one's code runs), and what fails is reported only if and when
+                    # the include runs
+                    continue
                 for place in reversed([*chain, action.location]):
                     if place is not None:
                         error.included_from(place)

@@ -24,7 +24,7 @@ from launchkit.errors import LaunchkitError, UserError, printable
 if TYPE_CHECKING:
     from launchkit.runtime.hooks import SupervisorHooks
 
-ROS_COMMANDS = ("topic", "node", "service", "param", "interface", "router")
+ROS_COMMANDS = ("topic", "node", "service", "param", "interface", "router", "tf")
 
 
 def _launch_parser(prog: str, description: str) -> CommandParser:
@@ -299,7 +299,7 @@ def _pkg(args: argparse.Namespace, packages: object) -> int:
 
     assert isinstance(packages, PackageIndex)
     if args.pkg_command == "list":
-        print("\n".join(packages.names()))
+        print("\n".join(f"{name}  {packages.origin(name)}" for name in packages.names()))
     elif args.pkg_command == "prefix":
         print(packages.prefix(args.package))
     elif args.pkg_command == "share":

@@ -54,7 +54,7 @@ ALLOWED: dict[str, tuple[str, ...]] = {
                           "launchkit.runtime"),
     "launchkit.workspace": ("launchkit._argparse", "launchkit.errors", "launchkit.packages",
                             "launchkit.ros.msgs", "launchkit.runtime.orphan_guard"),
-    "launchkit.packages": ("launchkit._record", "launchkit.errors"),
+    "launchkit.packages": ("launchkit._record", "launchkit.envvars", "launchkit.errors"),
     "launchkit.safe_yaml": ("launchkit.errors",),
     "launchkit.safe_yaml_fast": ("launchkit.safe_yaml",),
     "launchkit.errors": ("launchkit._record",),

@@ -213,6 +213,11 @@ class LaunchContext:
         self.saved_environments: list[dict[str, str]] = []
         #: Told of every handler registered (the ``--print`` recorder shows their actions).
         self.on_register: Callable[[Handler], None] | None = None
+        #: Set by ``--print`` and ``check`` while they show an event handler's actions, which
+        #: ROS runs only when the event comes: an action that would call the launch file's own
+        #: code (an OpaqueFunction, a handler's function) reports what it would call through
+        #: this, with where, instead of calling it. None: call it.
+        self.instead_of_calling: Callable[[str, Location | None], None] | None = None
         #: Work posted from other threads (the ROS link's replies), run on the launch's loop;
         #: ``waker`` makes the loop look (set by the runner).
         self.posted: deque[Callable[[], None]] = deque()

@@ -46,13 +46,17 @@ def to_data(msg: Any, truncate: int | None = TRUNCATE_LENGTH) -> dict[str, Any]:
 def _value(value: Any, truncate: int | None) -> Any:
     if is_message(value):
         return to_data(value, truncate)
-    if isinstance(value, (np.ndarray, array.array)):
-        value = value.tolist()
-    if isinstance(value, list):
-        items = [_value(v, truncate) for v in value]
-        if truncate is not None and len(items) > truncate:
-            return [*items[:truncate], "..."]
-        return items
+    if isinstance(value, (list, tuple, np.ndarray, array.array, bytes, bytearray)):
+        # every container a message field may be (rosidl: array.array for numeric sequences,
+        # numpy for fixed arrays, bytes for byte[]), cut before converting: an image's data
+        # is millions of items
+        cut = truncate is not None and len(value) > truncate
+        head = value[:truncate] if cut else value
+        plain = head.tolist() if isinstance(head, (np.ndarray, array.array)) else list(head)
+        items = [_value(v, truncate) for v in plain]
+        return [*items, "..."] if cut else items
+    if isinstance(value, np.generic):
+        return value.item()
     if isinstance(value, str) and truncate is not None and len(value) > truncate:
         return value[:truncate] + "..."
     return value

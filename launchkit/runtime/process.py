@@ -293,14 +293,17 @@ def group_exists(pgid: int | None) -> bool:
     return True
 
 
+def missing_folder(spec: ProcessSpec) -> bool:
+    """Whether ``spec`` runs on this host in a working folder that does not exist (as in ROS,
+    that process fails to start and the launch goes on)."""
+    return bool(spec.cwd) and not spec.machine and not os.path.isdir(spec.cwd or "")
+
+
 def check_program(spec: ProcessSpec) -> None:
-    """Fail before anything starts when a process's working folder or program does not exist."""
-    if spec.cwd and not os.path.isdir(spec.cwd):
-        raise LaunchFileError(
-            f"working folder '{spec.cwd}' of process '{spec.name}' does not exist",
-            spec.location,
-            expected="an existing folder in cwd=",
-        )
+    """Fail before anything starts when a process's program does not exist (its working
+    folder is looked for when it starts: see :func:`missing_folder`)."""
+    if missing_folder(spec):
+        return  # reported when it starts; its program is relative to a folder that is not
     program = spec.cmd[0]
     if "/" in program:
         path = program if os.path.isabs(program) else os.path.join(spec.cwd or os.getcwd(), program)

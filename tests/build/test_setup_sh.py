@@ -28,7 +28,9 @@ def test_after_sourcing_launchkit_lists_and_runs_the_built_executables(
     assert listed.returncode == 0, listed.stdout + listed.stderr
     lines = listed.stdout.splitlines()
     assert lines[:4] == ["talker_py talk", "demo_user use", "talk: one two", "demo_user runs"]
-    assert {"talker_py", "demo_user", "demo_interfaces"} <= set(lines[4:-1])
+    listed_names = {line.split()[0] for line in lines[4:-1]}  # "NAME  WHERE IT COMES FROM"
+    assert {"talker_py", "demo_user", "demo_interfaces"} <= listed_names
+    assert f"talker_py  {built.install / 'talker_py'}" in lines
     assert lines[-1] == str(built.install / "demo_interfaces" / "share" / "demo_interfaces")
 
 

@@ -18,6 +18,7 @@ from pathlib import Path
 from typing import Any
 
 from launchkit.testing._isolation import free_loopback_port
+from tests.viewer.conftest import keep_screenshot
 
 PEN = [179, 184, 255, 255]
 BACKGROUND = [69, 86, 255, 255]
@@ -98,10 +99,11 @@ def test_the_panel_draws_the_turtles_their_trails_and_the_background(
     handle = launch("turtlesim", "multisim.launch.py", env={"LAUNCHKIT_VIEWER_PORT": str(port)})
     wait_for_port(port)
     viewer = open_viewer(f"http://127.0.0.1:{port}/")
+    # the page leaves the 3D view for the turtlesim panel by itself
     viewer.wait(
-        "window.__turtlesim && window.__turtlesim.nodes().length === 2 "
+        "v.panel() === 'turtlesim' && window.__turtlesim.nodes().length === 2 "
         "&& window.__turtlesim.stats.scenes > 0",
-        "the panel following both turtlesims",
+        "the turtlesim panel shown, following both turtlesims",
     )
     viewer.page.evaluate("window.__turtlesim.choose('/turtlesim1/turtlesim')")
     viewer.wait(
@@ -116,7 +118,7 @@ def test_the_panel_draws_the_turtles_their_trails_and_the_background(
     assert at_start not in (BACKGROUND, PEN)  # turtle1 is drawn there
 
     end = drive_east(viewer, handle, centre + 1.5)
-    viewer.screenshot("turtlesim-driven")
+    keep_screenshot(viewer, "panel-turtlesim")
     assert pixel(viewer, centre, centre) == PEN  # the turtle left; its trail stays
     assert pixel(viewer, (centre + end) / 2, centre) == PEN  # along the way
     assert pixel(viewer, centre, centre + 0.2) == BACKGROUND  # beside the 3-pixel line

@@ -183,7 +183,9 @@ def start(
         from launchkit.description.events import EventHandler, ProcessExited, action_matcher
 
         handler = EventHandler(
-            matcher=action_matcher(ProcessExited, action), entities=options.on_exit_actions
+            matcher=action_matcher(ProcessExited, action),
+            entities=options.on_exit_actions,
+            description=f"on_exit of {spec.name}",
         )
         context.register_handler(handler)
     context.runner.start_process(spec)

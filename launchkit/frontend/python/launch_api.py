@@ -1,6 +1,6 @@
 """Stand-ins for the actions of ROS 2's ``launch`` package that launch files construct (its
-processes are in ``process_api.py``, its event system in ``event_api.py``, its conditions and
-substitutions in ``launch_substitutions.py``).
+processes are in ``process_api.py``, its event system in ``event_api.py``, its conditions in
+``conditions_api.py``, its substitutions in ``launch_substitutions.py``).
 
 Each action class *is* the matching launchkit action (a thin subclass whose constructor takes
 the ROS keyword arguments), so the loaded file needs no translation step afterwards.

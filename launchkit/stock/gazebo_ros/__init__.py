@@ -25,4 +25,5 @@ PACKAGE = PythonPackage(
     },
     # what `ExecuteProcess(cmd=['gazebo', ...])` runs where Gazebo is not installed
     programs={"gazebo": "gazebo", "gzserver": "gzserver", "gzclient": "gzclient"},
+    stand_in=True,
 )

@@ -1,9 +1,9 @@
-// The turtlesim panel: the 500 x 500 world of every turtlesim node of the graph, drawn from the
-// two hidden topics each one publishes (launchkit/stock/turtlesim/scene.py says what they hold):
-// /_turtlesim<node>/scene (background, turtles, the pen strokes since the last snapshot) and
-// /_turtlesim<node>/trails (a PNG snapshot of the trails). The panel appears over the 3D view
-// when the first turtlesim does; it has show() and hide() like the other panels of the page.
-// Tests read window.__turtlesim: what was drawn, and pixels of the picture.
+// The turtlesim panel: the 500 x 500 world of each turtlesim node of the graph (a menu chooses
+// when there are several), drawn from the two hidden topics each one publishes
+// (launchkit/stock/turtlesim/scene.py says what they hold): /_turtlesim<node>/scene (background,
+// turtles, the pen strokes since the last snapshot) and /_turtlesim<node>/trails (a PNG snapshot
+// of the trails). Like the other panels it subscribes only while shown; the page shows it when
+// the first turtlesim appears. Tests read window.__turtlesim: what was drawn, and pixels.
 
 const SCENE = /^\/_turtlesim(\/.+)\/scene$/;
 const TRAILS = (node) => `/_turtlesim${node}/trails`;
@@ -166,37 +166,33 @@ function drawTurtle(g, image) {
 }
 
 export class TurtlesimPanel {
-  constructor(ctx, host) {
+  // `root`: the panel's element; `appeared()` is called when the first turtlesim appears.
+  constructor(ctx, root, appeared = () => {}) {
     this.ctx = ctx;
+    this.appeared = appeared;
     this.worlds = new Map(); // node name -> World
+    this.wanted = new Set(); // the topics this panel subscribes to (while shown)
     this.current = null;
-    this.shown = false;
-    this.dismissed = false;
+    this.open = false;
+    this.seen = false;
     this.pending = false;
     this.stats = { scenes: 0, snapshots: 0, strokes: 0, frames: 0, node: null, turtles: [], background: null };
 
-    this.element = Object.assign(document.createElement("section"), { id: "turtlesim-panel", hidden: true });
-    const bar = Object.assign(document.createElement("div"), { className: "turtlesim-bar" });
-    this.title = Object.assign(document.createElement("span"), { textContent: "turtlesim" });
-    this.select = document.createElement("select");
-    this.select.title = "which turtlesim node";
+    const bar = Object.assign(document.createElement("div"), { className: "panel-bar" });
+    this.title = Object.assign(document.createElement("span"), { id: "turtlesim-title", textContent: "no turtlesim runs" });
+    this.select = Object.assign(document.createElement("select"), { id: "turtlesim-node", title: "which turtlesim node", hidden: true });
     this.select.addEventListener("change", () => this.choose(this.select.value));
-    const close = Object.assign(document.createElement("button"), { textContent: "3D view", title: "hide the turtlesim panel" });
-    close.addEventListener("click", () => { this.dismissed = true; this.hide(); });
-    bar.append(this.title, " ", this.select, " ", close);
-    this.canvas = Object.assign(document.createElement("canvas"), { width: 500, height: 500 });
-    this.canvas.setAttribute("aria-label", "turtlesim");
-    this.element.append(bar, this.canvas);
-    this.opener = Object.assign(document.createElement("button"), { id: "turtlesim-open", textContent: "turtlesim", hidden: true });
-    this.opener.addEventListener("click", () => { this.dismissed = false; this.show(); });
-    host.append(this.element, this.opener);
+    bar.append(this.title, this.select);
+    const stage = Object.assign(document.createElement("div"), { className: "turtlesim-stage" });
+    this.canvas = Object.assign(document.createElement("canvas"), { id: "turtlesim-canvas", width: 500, height: 500 });
+    this.canvas.setAttribute("aria-label", "the turtlesim world");
+    stage.append(this.canvas);
+    root.append(bar, stage);
 
     window.__turtlesim = {
       stats: this.stats,
       // [r, g, b, a] of the picture's pixel (x, y), in the world's pixels (y down)
       pixel: (x, y) => [...this.canvas.getContext("2d").getImageData(x, y, 1, 1).data],
-      show: () => this.show(),
-      hide: () => this.hide(),
       choose: (node) => this.choose(node),
       nodes: () => [...this.worlds.keys()],
     };
@@ -209,36 +205,37 @@ export class TurtlesimPanel {
       const match = SCENE.exec(name);
       if (match) nodes.add(match[1]);
     }
-    for (const node of nodes) {
-      if (this.worlds.has(node)) continue;
-      this.worlds.set(node, new World(node));
-      this.ctx.conn.want(`/_turtlesim${node}/scene`);
-      this.ctx.conn.want(TRAILS(node));
-    }
-    for (const node of [...this.worlds.keys()]) {
-      if (nodes.has(node)) continue;
-      this.worlds.delete(node);
-      this.ctx.conn.unwant(`/_turtlesim${node}/scene`);
-      this.ctx.conn.unwant(TRAILS(node));
-    }
+    for (const node of nodes) if (!this.worlds.has(node)) this.worlds.set(node, new World(node));
+    for (const node of [...this.worlds.keys()]) if (!nodes.has(node)) this.worlds.delete(node);
     const names = [...this.worlds.keys()].sort();
     this.select.replaceChildren(...names.map((n) => new Option(n, n)));
     this.select.hidden = names.length < 2;
     if (!this.worlds.has(this.current)) this.current = names[0] || null;
     if (this.current) this.select.value = this.current;
     this.stats.node = this.current;
-    this.opener.hidden = this.shown || names.length === 0;
-    if (names.length && !this.shown && !this.dismissed) this.show();
-    if (!names.length && this.shown) this.hide();
+    this.follow();
     this.requestRender();
+    if (names.length && !this.seen) {
+      this.seen = true;
+      this.appeared();
+    }
+  }
+
+  // Subscribe to the topics of every turtlesim while the panel is shown, and to none otherwise.
+  follow() {
+    const wanted = new Set();
+    if (this.open) for (const node of this.worlds.keys()) wanted.add(`/_turtlesim${node}/scene`).add(TRAILS(node));
+    for (const topic of wanted) if (!this.wanted.has(topic)) this.ctx.conn.want(topic);
+    for (const topic of this.wanted) if (!wanted.has(topic)) this.ctx.conn.unwant(topic);
+    this.wanted = wanted;
   }
 
   onMessage(topic, type, msg) {
-    if (type !== "std_msgs/msg/String" || !topic.startsWith("/_turtlesim/")) return;
+    if (type !== "std_msgs/msg/String" || !this.wanted.has(topic)) return;
     const scene = SCENE.exec(topic);
     const node = scene ? scene[1] : topic.slice("/_turtlesim".length, -"/trails".length);
     const world = this.worlds.get(node);
-    if (!world || (!scene && topic !== TRAILS(node))) return;
+    if (!world) return;
     let body;
     try {
       body = JSON.parse(msg.data);
@@ -261,25 +258,24 @@ export class TurtlesimPanel {
   choose(node) {
     if (!this.worlds.has(node)) return;
     this.current = node;
+    this.select.value = node;
     this.stats.node = node;
     this.requestRender();
   }
 
   show() {
-    this.shown = true;
-    this.element.hidden = false;
-    this.opener.hidden = true;
+    this.open = true;
+    this.follow();
     this.requestRender();
   }
 
   hide() {
-    this.shown = false;
-    this.element.hidden = true;
-    this.opener.hidden = this.worlds.size === 0;
+    this.open = false;
+    this.follow();
   }
 
   requestRender() {
-    if (this.pending) return;
+    if (this.pending || !this.open) return;
     this.pending = true;
     requestAnimationFrame(() => {
       this.pending = false;
@@ -291,6 +287,7 @@ export class TurtlesimPanel {
     const world = this.worlds.get(this.current);
     const scene = world?.scene;
     const g = this.canvas.getContext("2d");
+    this.title.textContent = !world ? "no turtlesim runs" : this.select.hidden ? world.node : "";
     if (!scene) {
       g.fillStyle = "#202124";
       g.fillRect(0, 0, this.canvas.width, this.canvas.height);
@@ -310,7 +307,6 @@ export class TurtlesimPanel {
       drawTurtle(g, turtle.image);
       g.restore();
     }
-    this.title.textContent = this.select.hidden ? `turtlesim ${world.node}` : "turtlesim"; // else the menu names it
     Object.assign(this.stats, { frames: this.stats.frames + 1, turtles: scene.turtles, background: scene.background });
   }
 }
