@@ -9,9 +9,9 @@ without running anything, and checks the command-line arguments against the top 
 from __future__ import annotations
 
 from collections.abc import Mapping
+from dataclasses import fields, is_dataclass
 from pathlib import Path
 
-from launchkit._record import Record
 from launchkit.description.actions import DeclareArgument, Include
 from launchkit.description.actions.base import Action
 from launchkit.description.launch_description import LaunchDescription, walk
@@ -227,8 +227,6 @@ def _var_names(value: object) -> set[str]:
             names.add(name)
     elif hasattr(value, "args") and isinstance(value, Substitution):
         names |= _var_names(getattr(value, "args", ()))
-    elif isinstance(value, Record):  # a condition, an include's <arg>, a <keep>
-        names |= _var_names(list(value.fields()))
-    elif hasattr(value, "__dataclass_fields__"):  # the values of a node's tags
-        names |= _var_names([getattr(value, name) for name in value.__dataclass_fields__])
+    elif is_dataclass(value):  # a condition, an include's <arg>, a <keep>, a node's <param>
+        names |= _var_names([getattr(value, field.name) for field in fields(value)])
     return names

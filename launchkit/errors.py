@@ -17,7 +17,7 @@ outermost first: ``a.launch.xml:12:3 -> b.launch.py:40: error: ...``.
 
 from __future__ import annotations
 
-from launchkit._record import Frozen, slot_setters
+from dataclasses import dataclass
 
 _NAMED_CONTROLS = {"\n": "\\n", "\r": "\\r", "\0": "\\0"}
 #: Control characters (C0 but tab, DEL, C1) as escapes: a name or a file must not be able to
@@ -34,18 +34,13 @@ def printable(text: str) -> str:
     return text.translate(_ESCAPES)
 
 
-class Location(Frozen):
+@dataclass(frozen=True)
+class Location:
     """Where in a launch file something is: 1-based line and column (0 when unknown)."""
 
-    __slots__ = ("col", "file", "line")  # a large file has one per element and value
     file: str
-    line: int
-    col: int
-
-    def __init__(self, file: str, line: int = 0, col: int = 0) -> None:
-        _set_file(self, file)
-        _set_line(self, line)
-        _set_col(self, col)
+    line: int = 0
+    col: int = 0
 
     def __str__(self) -> str:
         if self.line and self.col:
@@ -59,9 +54,6 @@ class Location(Frozen):
         if not self.line or not self.col:
             return self
         return Location(self.file, self.line, self.col + offset)
-
-
-_set_file, _set_line, _set_col = slot_setters(Location)
 
 
 class LaunchkitError(Exception):

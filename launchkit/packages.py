@@ -14,9 +14,9 @@ from __future__ import annotations
 import os
 import sys
 from collections.abc import Mapping
+from dataclasses import dataclass, field
 from pathlib import Path
 
-from launchkit._record import Frozen
 from launchkit.errors import PackageNotFoundError
 
 ENTRY_POINT_GROUP = "launchkit.packages"
@@ -42,7 +42,8 @@ def exists(path: Path) -> bool:
         return False
 
 
-class PythonPackage(Frozen):
+@dataclass(frozen=True)
+class PythonPackage:
     """A ROS-style package provided by a Python distribution.
 
     ``executables`` maps an executable name (what ``<node exec=...>`` names) to the Python
@@ -51,43 +52,21 @@ class PythonPackage(Frozen):
     program is on the PATH.
     """
 
-    __slots__ = ("executables", "name", "programs", "share")
     name: str
     share: Path
-    executables: Mapping[str, str]
-    programs: Mapping[str, str]
-
-    def __init__(
-        self,
-        name: str,
-        share: Path,
-        executables: Mapping[str, str] | None = None,
-        programs: Mapping[str, str] | None = None,
-    ) -> None:
-        object.__setattr__(self, "name", name)
-        object.__setattr__(self, "share", share)
-        object.__setattr__(self, "executables", {} if executables is None else executables)
-        object.__setattr__(self, "programs", {} if programs is None else programs)
+    executables: Mapping[str, str] = field(default_factory=dict)
+    programs: Mapping[str, str] = field(default_factory=dict)
 
 
-class FoundPackage(Frozen):
+@dataclass(frozen=True)
+class FoundPackage:
     """A package as the index found it: where it lives and which source it came from."""
 
-    __slots__ = ("name", "prefix", "python", "share", "source")
     name: str
     prefix: Path
     share: Path
     source: str
-    python: PythonPackage | None
-
-    def __init__(
-        self, name: str, prefix: Path, share: Path, source: str, python: PythonPackage | None = None
-    ) -> None:
-        object.__setattr__(self, "name", name)
-        object.__setattr__(self, "prefix", prefix)
-        object.__setattr__(self, "share", share)
-        object.__setattr__(self, "source", source)
-        object.__setattr__(self, "python", python)
+    python: PythonPackage | None = None
 
 
 class PackageIndex:

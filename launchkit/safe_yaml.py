@@ -188,7 +188,7 @@ class _Composer:
             elif isinstance(event, yaml.SequenceStartEvent | yaml.MappingStartEvent):
                 kind = "seq" if isinstance(event, yaml.SequenceStartEvent) else "map"
                 self._check_tag(event, kind)
-                mark = event.start_mark
+                mark: Any = event.start_mark  # the parser's events always have one
                 opened = Node(kind, self.file, mark.line + 1, mark.column + 1)
                 self._anchor(event, opened)
                 stack.append((opened, []))

@@ -90,4 +90,3 @@ def parse_condition(entity: Entity) -> Condition | None:
     if unless is not None:
         return Condition(unless, True, entity.attribute_location("unless"))
     return None
-

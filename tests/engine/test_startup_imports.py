@@ -61,18 +61,6 @@ def test_running_a_yaml_file_loads_no_lxml(tmp_path: Path) -> None:
     assert loaded_by("run", str(launch)) == ["yaml"]
 
 
-def test_an_empty_launch_creates_no_dataclasses(tmp_path: Path) -> None:
-    # dataclasses imports inspect (ast, dis, tokenize) and compiles each class's methods at
-    # import: the modules every launch needs declare plain classes (launchkit._record). (lxml
-    # imports inspect too: a plain XML file is read with expat.)
-    xml = tmp_path / "empty.launch.xml"
-    xml.write_text("<launch/>\n")
-    assert loaded_by("run", str(xml), prefixes=("dataclasses", "inspect")) == []
-    yaml = tmp_path / "empty.launch.yaml"
-    yaml.write_text("launch: []\n")
-    assert loaded_by("run", str(yaml), prefixes=("dataclasses", "inspect")) == ["yaml"]
-
-
 def test_a_launch_that_starts_nothing_opens_no_socket_or_run_folder(tmp_path: Path) -> None:
     # The private run folder (and the orphan guard told about it) and the child-request
     # socket are made when the first process starts; $(anon) imports socket when used.
