@@ -15,6 +15,7 @@ import os
 import sys
 from collections.abc import Mapping
 from dataclasses import dataclass, field
+from importlib.metadata import entry_points
 from pathlib import Path
 
 from launchkit.errors import PackageNotFoundError
@@ -248,8 +249,6 @@ def _changed(folder: str) -> int:
 
 
 def _read_entry_points() -> dict[str, PythonPackage]:
-    from importlib.metadata import entry_points
-
     found: dict[str, PythonPackage] = {}
     for ep in entry_points(group=ENTRY_POINT_GROUP):
         if ep.name in found:

@@ -13,7 +13,7 @@ if TYPE_CHECKING:
     from launchkit.description.launch_context import LaunchContext
 
 
-@dataclass(frozen=True, slots=True)
+@dataclass(frozen=True)
 class Condition:
     """``if="VALUE"`` (or ``unless`` when ``negate``), evaluated with the strict rule;
     ``location`` is where its error points."""

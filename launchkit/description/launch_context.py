@@ -13,6 +13,8 @@ imports it back.
 from __future__ import annotations
 
 import os
+import shutil
+import tempfile
 from collections import deque
 from collections.abc import Callable, Iterator, Sequence
 from contextlib import AbstractContextManager, contextmanager, nullcontext
@@ -229,8 +231,6 @@ class LaunchContext:
 
     def write_scratch_file(self, prefix: str, suffix: str, text: str) -> Path:
         """Write a generated file (a node's parameters) that lives as long as the run."""
-        import tempfile  # with random and hashlib: only for a file that writes one
-
         if self._scratch is None:
             root = self.scratch_root() if self.scratch_root is not None else None
             self._scratch = Path(tempfile.mkdtemp(prefix="launchkit-", dir=root))
@@ -245,8 +245,6 @@ class LaunchContext:
             self._ros.close()
             self._ros = None
         if self._scratch is not None:
-            import shutil
-
             shutil.rmtree(self._scratch, ignore_errors=True)
             self._scratch = None
 

@@ -8,7 +8,9 @@ import types
 from collections.abc import Iterable
 from typing import Any
 
+from launchkit.description.actions.event_actions import EmitEvent
 from launchkit.description.launch_context import LaunchContext
+from launchkit.description.substitutions.base import perform
 from launchkit.errors import LaunchFileError
 from launchkit.frontend.python.values import here, to_value
 
@@ -55,8 +57,6 @@ class LaunchContextView:
 
     def perform_substitution(self, substitution: Any) -> str:
         """The text of a substitution (or of a list of them) now."""
-        from launchkit.description.substitutions.base import perform
-
         return perform(to_value(substitution), self.real)
 
     def register_event_handler(self, event_handler: Any, append: bool = False) -> None:
@@ -73,8 +73,6 @@ class LaunchContextView:
 
     def emit_event_sync(self, event: Any) -> None:
         """Emit an event, as ``EmitEvent(event=...)`` would."""
-        from launchkit.description.actions.event_actions import EmitEvent
-
         EmitEvent(event, here()).execute(self.real)
 
     emit_event = emit_event_sync
@@ -90,6 +88,4 @@ class LaunchContextView:
 
 def perform_substitutions(context: Any, substitutions: Iterable[Any]) -> str:
     """``launch.utilities.perform_substitutions``."""
-    from launchkit.description.substitutions.base import perform
-
     return perform(to_value(list(substitutions)), getattr(context, "real", context))

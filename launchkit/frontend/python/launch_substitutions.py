@@ -36,6 +36,7 @@ from launchkit.description.substitutions import Or as OrSub
 from launchkit.description.substitutions.base import Substitution, Value, describe, perform
 from launchkit.description.substitutions.local import Local
 from launchkit.errors import LaunchFileError, Location
+from launchkit.frontend.python.context_view import LaunchContextView
 from launchkit.frontend.python.values import (
     SubstitutionLike,
     call_user,
@@ -186,8 +187,6 @@ class _UserSubstitution(Substitution):
 
     def perform(self, context: LaunchContext) -> str:
         """What the user's ``perform`` returns."""
-        from launchkit.frontend.python.context_view import LaunchContextView
-
         what = f"{type(self.owner).__name__}.perform"
         result = call_user(self.owner.perform, what, self._modules, LaunchContextView(context))
         return str(result)

@@ -8,6 +8,8 @@ import sys
 import types
 from collections.abc import Sequence
 
+from launchkit.ros.msgs._api import get_message, get_service, packages, type_names
+
 _PREFIX = "launchkit.ros.msgs."
 
 
@@ -25,8 +27,6 @@ class _Finder(importlib.abc.MetaPathFinder, importlib.abc.Loader):
         parts = fullname[len(_PREFIX) :].split(".")
         if parts[0].startswith("_"):
             return None
-        from launchkit.ros.msgs._api import packages
-
         if parts[0] not in packages():
             return None
         if len(parts) == 1:
@@ -43,8 +43,6 @@ class _Finder(importlib.abc.MetaPathFinder, importlib.abc.Loader):
         if len(parts) == 1:
             module.__path__ = []
             return
-        from launchkit.ros.msgs._api import get_message, get_service, type_names
-
         pkg, kind = parts
         prefix = f"{pkg}/{kind}/"
         names = [name for name in type_names(kind) if name.startswith(prefix)]
