@@ -68,4 +68,3 @@ def test_a_launch_that_starts_nothing_makes_no_run_folder_or_socket(tmp_path: Pa
     started = tmp_path / "one.launch.xml"
     started.write_text("<launch><executable cmd='true'/></launch>\n")
     assert launched("run", str(started))[1] == ["folder", "socket"]
-

@@ -115,7 +115,7 @@ class Call(Substitution):
 
 def perform(value: Value, context: LaunchContext) -> str:
     """Perform every part of ``value`` and concatenate the results."""
-    return "".join(part.perform(context) for part in value)
+    return "".join([part.perform(context) for part in value])
 
 
 def describe(value: Value) -> str:

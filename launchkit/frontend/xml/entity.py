@@ -48,7 +48,7 @@ class XmlEntity(Entity):
         super().__init__(str(element.tag))
         self.element = element
         self.source = source
-        self._attributes = {str(name): str(value) for name, value in element.items()}
+        self._attributes: dict[str, str] = dict(element.items())  # type: ignore[arg-type]
         self._start = self._find_start()
 
     def _find_start(self) -> int:
