@@ -10,7 +10,6 @@ a signal interrupted (130 for Ctrl-C while parsing or ``--print``).
 from __future__ import annotations
 
 import argparse
-import gc
 import os
 import signal
 import sys
@@ -149,11 +148,6 @@ def build_parser() -> argparse.ArgumentParser:
     return parser
 
 
-#: Whether this process ends when the command does (the console script), or calls it in
-#: process (tests, ``main``'s callers).
-_PROCESS_ENDS_AFTER = False
-
-
 def main(argv: list[str] | None = None) -> int:
     """Entry point of the ``launchkit`` console script."""
     argv = list(sys.argv[1:] if argv is None else argv)
@@ -186,8 +180,6 @@ def console_main() -> NoReturn:
     """The ``launchkit`` console script: :func:`main`, then a prompt exit with its status (the
     interpreter's own teardown would delay the exit by up to seconds on a busy machine; see
     :mod:`launchkit._exit`)."""
-    global _PROCESS_ENDS_AFTER
-    _PROCESS_ENDS_AFTER = True
     exit_promptly(main())
 
 
@@ -272,10 +264,6 @@ def _launch(args: argparse.Namespace, hooks: SupervisorHooks | None = None) -> i
     packages = PackageIndex()
     path = api.resolve_launch_file(files[0], files[1] if with_package else None, packages)
     try:
-        if _PROCESS_ENDS_AFTER and (args.command == "check" or args.print_description):
-            # the process ends with os._exit after this: a collection of every object a large
-            # file built (once the check's pause ends) would be half a second for nothing
-            gc.disable()
         if args.command == "check":
             _print(api.check_report(path, arguments))
             return 0

@@ -19,9 +19,10 @@ from __future__ import annotations
 import os
 import sys
 from collections.abc import Mapping
+from dataclasses import KW_ONLY, dataclass, field
+from importlib.metadata import entry_points
 from pathlib import Path
 
-from launchkit._record import Frozen
 from launchkit.envvars import STANDINS
 from launchkit.errors import LaunchArgumentError, PackageNotFoundError
 
@@ -51,7 +52,8 @@ def exists(path: Path) -> bool:
         return False
 
 
-class PythonPackage(Frozen):
+@dataclass(frozen=True)
+class PythonPackage:
     """A ROS-style package provided by a Python distribution.
 
     ``executables`` maps an executable name (what ``<node exec=...>`` names) to the Python
@@ -61,47 +63,23 @@ class PythonPackage(Frozen):
     package of the same name wins over (see the module).
     """
 
-    __slots__ = ("executables", "name", "programs", "share", "stand_in")
     name: str
     share: Path
-    executables: Mapping[str, str]
-    programs: Mapping[str, str]
-    stand_in: bool
-
-    def __init__(
-        self,
-        name: str,
-        share: Path,
-        executables: Mapping[str, str] | None = None,
-        programs: Mapping[str, str] | None = None,
-        *,
-        stand_in: bool = False,
-    ) -> None:
-        object.__setattr__(self, "name", name)
-        object.__setattr__(self, "share", share)
-        object.__setattr__(self, "executables", {} if executables is None else executables)
-        object.__setattr__(self, "programs", {} if programs is None else programs)
-        object.__setattr__(self, "stand_in", stand_in)
+    executables: Mapping[str, str] = field(default_factory=dict)
+    programs: Mapping[str, str] = field(default_factory=dict)
+    _: KW_ONLY
+    stand_in: bool = False
 
 
-class FoundPackage(Frozen):
+@dataclass(frozen=True)
+class FoundPackage:
     """A package as the index found it: where it lives and which source it came from."""
 
-    __slots__ = ("name", "prefix", "python", "share", "source")
     name: str
     prefix: Path
     share: Path
     source: str
-    python: PythonPackage | None
-
-    def __init__(
-        self, name: str, prefix: Path, share: Path, source: str, python: PythonPackage | None = None
-    ) -> None:
-        object.__setattr__(self, "name", name)
-        object.__setattr__(self, "prefix", prefix)
-        object.__setattr__(self, "share", share)
-        object.__setattr__(self, "source", source)
-        object.__setattr__(self, "python", python)
+    python: PythonPackage | None = None
 
 
 class PackageIndex:
@@ -320,8 +298,6 @@ def _changed(folder: str) -> int:
 
 
 def _read_entry_points() -> dict[str, PythonPackage]:
-    from importlib.metadata import entry_points
-
     found: dict[str, PythonPackage] = {}
     for ep in entry_points(group=ENTRY_POINT_GROUP):
         if ep.name in found:

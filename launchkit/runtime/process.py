@@ -19,9 +19,9 @@ import shutil
 import signal
 import subprocess
 from collections.abc import Callable
+from dataclasses import dataclass, field
 from typing import Protocol
 
-from launchkit._record import Record
 from launchkit.description.process_spec import ProcessSpec
 from launchkit.errors import LaunchFileError, LaunchkitError
 from launchkit.runtime.lifecycle import Escalation, Lifecycle, RespawnPolicy, State
@@ -34,18 +34,13 @@ READ_CHUNK = 64 * 1024
 _GATE = 'read -r _ || exit 125; exec "$0" "$@" </dev/null'
 
 
-class Stream(Record):
+@dataclass
+class Stream:
     """One output channel of a child (a pipe, or a pty for emulate_tty)."""
 
-    __slots__ = ("fd", "kind", "lines")
     fd: int
     kind: str  # "stdout" or "stderr"
-    lines: LineBuffer
-
-    def __init__(self, fd: int, kind: str, lines: LineBuffer | None = None) -> None:
-        self.fd = fd
-        self.kind = kind
-        self.lines = LineBuffer() if lines is None else lines
+    lines: LineBuffer = field(default_factory=LineBuffer)
 
 
 def lifecycle_of(spec: ProcessSpec) -> Lifecycle:

@@ -7,6 +7,8 @@ import os
 from collections.abc import Iterable
 from typing import Any
 
+import yaml
+
 from launchkit.description import actions as lk
 from launchkit.description.actions.base import Action
 from launchkit.description.actions.parameters import ParamDict, ParamEntry
@@ -149,8 +151,6 @@ class SetParameter(lk.SetParameter):
             isinstance(value, list | tuple)
             and all(isinstance(v, bool | int | float) for v in value)
         ):
-            import yaml
-
             value = (
                 yaml.safe_dump(
                     list(value) if isinstance(value, tuple) else value, default_flow_style=True
