@@ -66,9 +66,10 @@ def test_the_index_and_pkg_list_say_which_one_a_name_is(installed: Path, launch_
     with pytest.raises(LaunchArgumentError, match="LAUNCHKIT_STANDINS is 'sometimes'"):
         PackageIndex("", stand_ins="sometimes")
     listed = run_launchkit(launch_dir, "pkg", "list", env={"AMENT_PREFIX_PATH": str(installed)})
-    assert f"robot_state_publisher  {installed}" in listed.lines
+    # ros2 pkg list's one name a line; only what a stand-in serves is marked
+    assert "robot_state_publisher" in listed.lines  # the installed one
     assert "rviz2  (launchkit stand-in)" in listed.lines
-    assert "robot_wheel  (Python distribution)" in listed.lines
+    assert "robot_wheel" in listed.lines
     never_listed = run_launchkit(launch_dir, "pkg", "list", env={"LAUNCHKIT_STANDINS": "never"})
     assert not [line for line in never_listed.lines if "stand-in" in line]
 
