@@ -28,7 +28,11 @@ _RUN_DIR, _OWN_RUN_DIR = suite_env.run_dir()
 _SUITE_ENVIRONMENT = suite_env.suite_environment(os.environ, _RUN_DIR)
 os.environ.clear()
 os.environ.update(_SUITE_ENVIRONMENT)
-os.environ.update(suite_env.private_defaults())
+_PROCESS_DEFAULTS = {
+    **suite_env.private_defaults(),
+    "ROS_LOG_DIR": _SUITE_ENVIRONMENT["ROS_LOG_DIR"],
+}
+os.environ.update(_PROCESS_DEFAULTS)
 
 
 @dataclass
@@ -84,10 +88,13 @@ def _private_defaults(
     monkeypatch: pytest.MonkeyPatch, tmp_path_factory: pytest.TempPathFactory
 ) -> None:
     """Each test its own router port, viewer port and ROS domain for whatever it starts without
-    naming one, and its own log folder (so ``latest`` is its own run)."""
-    for name, value in suite_env.private_defaults().items():
-        monkeypatch.setenv(name, value)
-    monkeypatch.setenv("ROS_LOG_DIR", str(tmp_path_factory.mktemp("ros_log")))
+    naming one, and its own log folder (so ``latest`` is its own run); but for those a fixture of
+    a wider scope set (a module's router, say), which its tests share."""
+    fresh = suite_env.private_defaults()
+    fresh["ROS_LOG_DIR"] = str(tmp_path_factory.mktemp("ros_log"))
+    for name, value in fresh.items():
+        if os.environ.get(name) == _PROCESS_DEFAULTS[name]:
+            monkeypatch.setenv(name, value)
 
 
 @pytest.fixture

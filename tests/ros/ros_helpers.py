@@ -80,10 +80,13 @@ def spin_until(node: Node, predicate: Callable[[], bool], timeout: float, what: 
 
 def demo_package(prefix: Path) -> None:
     """An AMENT_PREFIX_PATH package ``demo`` whose executables run the test nodes (``talker``,
-    ``listener``): what ``launchkit exec demo talker`` and a launch's ``<node>`` start."""
+    ``listener``, ``knobs``): what ``launchkit exec demo talker`` and a launch's ``<node>``
+    start."""
     run = f"#!{sys.executable}\nimport runpy\nrunpy.run_path({{!r}}, run_name='__main__')\n"
-    scripts = {name: run.format(str(NODES_DIR / f"{name}.py")) for name in ("talker", "listener")}
-    ament_package(prefix, "demo", scripts)
+    names = ("talker", "listener", "knobs")
+    ament_package(
+        prefix, "demo", {name: run.format(str(NODES_DIR / f"{name}.py")) for name in names}
+    )
 
 
 def stderr_line(child: Child, text: str, timeout: float) -> str:
