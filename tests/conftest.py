@@ -23,16 +23,13 @@ from tests import suite_env
 from tests.support import hosted_router
 
 # The suite's environment (tests/suite_env.py): set before pytest starts its xdist workers,
-# which inherit it; the private defaults again per process (each worker its own) and per test.
+# which inherit it; the private defaults again for each process (each worker its own: what its
+# module fixtures start and what its tests start must meet at the same router and domain).
 _RUN_DIR, _OWN_RUN_DIR = suite_env.run_dir()
 _SUITE_ENVIRONMENT = suite_env.suite_environment(os.environ, _RUN_DIR)
 os.environ.clear()
 os.environ.update(_SUITE_ENVIRONMENT)
-_PROCESS_DEFAULTS = {
-    **suite_env.private_defaults(),
-    "ROS_LOG_DIR": _SUITE_ENVIRONMENT["ROS_LOG_DIR"],
-}
-os.environ.update(_PROCESS_DEFAULTS)
+os.environ.update(suite_env.private_defaults())
 
 
 @dataclass
@@ -84,17 +81,13 @@ def pytest_unconfigure(config: pytest.Config) -> None:
 
 
 @pytest.fixture(autouse=True)
-def _private_defaults(
+def _own_log_folder(
     monkeypatch: pytest.MonkeyPatch, tmp_path_factory: pytest.TempPathFactory
 ) -> None:
-    """Each test its own router port, viewer port and ROS domain for whatever it starts without
-    naming one, and its own log folder (so ``latest`` is its own run); but for those a fixture of
-    a wider scope set (a module's router, say), which its tests share."""
-    fresh = suite_env.private_defaults()
-    fresh["ROS_LOG_DIR"] = str(tmp_path_factory.mktemp("ros_log"))
-    for name, value in fresh.items():
-        if os.environ.get(name) == _PROCESS_DEFAULTS[name]:
-            monkeypatch.setenv(name, value)
+    """Each test its own log folder, so ``latest`` is its own run (unless a fixture of a wider
+    scope gave its tests one to share)."""
+    if os.environ.get("ROS_LOG_DIR") == _SUITE_ENVIRONMENT["ROS_LOG_DIR"]:
+        monkeypatch.setenv("ROS_LOG_DIR", str(tmp_path_factory.mktemp("ros_log")))
 
 
 @pytest.fixture

@@ -7,7 +7,7 @@ So :func:`suite_environment` drops every ``LAUNCHKIT_*`` setting (``launchkit.en
 ``RMW_IMPLEMENTATION``, and points every folder a program would make below the home (launchkit's
 logs and cache, ROS's logs, the XDG folders) into one folder of the run; :func:`private_defaults`
 gives the defaults that remain a private router port, viewer port and ROS domain. The suite's
-``conftest.py`` applies both once per process and the defaults again for each test.
+``conftest.py`` applies both once per process (each xdist worker has defaults of its own).
 
 The suite's own settings stay the user's to give: ``LAUNCHKIT_FUZZ_PROFILE`` and
 ``LAUNCHKIT_FUZZ_EXAMPLES`` (tests/fuzz), ``LAUNCHKIT_CHROMIUM`` (tests/viewer),

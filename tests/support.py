@@ -1,6 +1,6 @@
 """Helpers shared by tests of several folders: a router hosted by the test process, a poll
 with a deadline for conditions that no event announces, the output lines of a child process
-read as they come, and ROS-style packages in an install prefix.
+read as they come (taken one by one, or kept), and ROS-style packages in an install prefix.
 
 (``launchkit.testing._isolation`` has the free loopback port and the router endpoint for it.)
 """
@@ -44,23 +44,43 @@ def wait_until(
         time.sleep(every)
 
 
-class OutputLines:
-    """The lines of a child's output stream, read by a thread of their own as they come. Take
-    the next one that a test wants (waiting for it), or all that came so far; every line taken
-    is kept in :attr:`seen`, for assertions and failure messages."""
+class _LineReader:
+    """A thread that reads a child's output stream line by line (newline stripped) as the lines
+    come, and hands each to :meth:`_arrived` (the two kinds of reading below)."""
 
     def __init__(self, stream: IO[str]) -> None:
-        self.seen: list[str] = []
-        self._queue: queue.Queue[str] = queue.Queue()
         self._reader = threading.Thread(target=self._pump, args=(stream,), daemon=True)
         self._reader.start()
 
     def _pump(self, stream: IO[str]) -> None:
         try:
             for line in stream:
-                self._queue.put(line.rstrip("\n"))
+                self._arrived(line.rstrip("\n"))
         except (OSError, ValueError):
             pass  # the stream was closed under the reader (a test's cleanup)
+
+    def _arrived(self, line: str) -> None:
+        raise NotImplementedError
+
+    def join(self, timeout: float = 5.0) -> bool:
+        """Wait for the stream's end (the process closed it) up to ``timeout`` seconds; whether
+        it came."""
+        self._reader.join(timeout)
+        return not self._reader.is_alive()
+
+
+class OutputLines(_LineReader):
+    """The lines of a child's output stream, read as they come. Take the next one that a test
+    wants (waiting for it), or all that came so far; every line taken is kept in :attr:`seen`,
+    for assertions and failure messages."""
+
+    def __init__(self, stream: IO[str]) -> None:
+        self.seen: list[str] = []
+        self._queue: queue.Queue[str] = queue.Queue()
+        super().__init__(stream)
+
+    def _arrived(self, line: str) -> None:
+        self._queue.put(line)
 
     def next(self, wanted: Callable[[str], object], timeout: float) -> str | None:
         """The next line for which ``wanted(line)`` is true (the lines before it are passed
@@ -84,9 +104,45 @@ class OutputLines:
         self.seen.extend(taken)
         return taken
 
-    def join(self, timeout: float = 5.0) -> None:
-        """Wait for the stream's end (the process closed it) up to ``timeout`` seconds."""
-        self._reader.join(timeout)
+
+class KeptLines(_LineReader):
+    """Every line of a child's output stream, kept in order as they come; search them, waiting
+    for a line to come."""
+
+    def __init__(self, stream: IO[str]) -> None:
+        self.lines: list[str] = []
+        super().__init__(stream)
+
+    def _arrived(self, line: str) -> None:
+        self.lines.append(line)
+
+    def first(
+        self,
+        text: str,
+        timeout: float,
+        *,
+        after: int = 0,
+        ended: Callable[[], bool] = lambda: False,
+    ) -> str | None:
+        """The first line from index ``after`` on that contains ``text``, waiting for it up to
+        ``timeout`` seconds, or until ``ended()`` says the process wrote all it will (its last
+        lines are read first); None when none came."""
+        deadline = time.monotonic() + timeout
+        while True:
+            found = next((line for line in self.lines[after:] if text in line), None)
+            if found is not None:
+                return found
+            if ended():
+                self.join()
+                return next((line for line in self.lines[after:] if text in line), None)
+            if time.monotonic() > deadline:
+                return None
+            time.sleep(0.02)
+
+    @property
+    def text(self) -> str:
+        """The lines so far, joined."""
+        return "\n".join(self.lines)
 
 
 def ament_package(

@@ -19,7 +19,7 @@ import numpy as np
 import launchkit.ros as ros
 from launchkit.ros.message_data import fields_of
 from launchkit.ros.msgs import get_message, is_message
-from tests.support import wait_until
+from tests.support import KeptLines
 
 _BASE, _NAME, _ARRAY, _SEQUENCE = 1, 2, 3, 4
 _INT_RANGES = {
@@ -67,30 +67,20 @@ class BagProcess:
             env=launchkit_env(router),
             start_new_session=True,
         )
-        self.lines: list[str] = []
-        self._reader = threading.Thread(target=self._pump, daemon=True)
-        self._reader.start()
-
-    def _pump(self) -> None:
         assert self.proc.stdout is not None
-        for line in self.proc.stdout:
-            self.lines.append(line.rstrip("\n"))
+        self._lines = KeptLines(self.proc.stdout)
 
     @property
     def output(self) -> str:
         """Everything printed so far."""
-        return "\n".join(self.lines)
+        return self._lines.text
 
     def wait_line(self, text: str, timeout: float = 20) -> None:
         """Wait for a line containing ``text`` (fails early if the process exits)."""
-        wait_until(
-            lambda: any(text in line for line in self.lines) or self.proc.poll() is not None,
-            timeout,
-            f"a line with {text!r} from launchkit bag; output:\n{self.output}",
-        )
-        assert any(text in line for line in self.lines), (
-            f"launchkit bag exited {self.proc.returncode} before printing {text!r}:\n{self.output}"
-        )
+        found = self._lines.first(text, timeout, ended=lambda: self.proc.poll() is not None)
+        if found is None:
+            status = "timed out" if self.proc.poll() is None else f"exited {self.proc.returncode}"
+            raise AssertionError(f"launchkit bag {status} before printing {text!r}:\n{self.output}")
 
     def interrupt(self, timeout: float = 30) -> int:
         """SIGINT (Ctrl-C) and wait for the exit status."""
@@ -104,8 +94,7 @@ class BagProcess:
         return code
 
     def _finish(self) -> None:
-        self._reader.join(5)
-        if self.proc.stdout is not None and not self._reader.is_alive():
+        if self._lines.join() and self.proc.stdout is not None:
             self.proc.stdout.close()
 
     def kill(self) -> None:

@@ -9,13 +9,12 @@ from __future__ import annotations
 import os
 import subprocess
 import sys
-import threading
 import time
 from collections.abc import Callable
 from pathlib import Path
 
 from launchkit.ros import Node, spin_once
-from tests.support import OutputLines, ament_package
+from tests.support import KeptLines, OutputLines, ament_package
 
 NODES_DIR = Path(__file__).parent / "nodes"
 
@@ -33,14 +32,13 @@ class Child:
         )
         assert self.proc.stdout is not None
         self.out = OutputLines(self.proc.stdout)
-        self.stderr: list[str] = []
-        self._err_reader = threading.Thread(target=self._pump_err, daemon=True)
-        self._err_reader.start()
-
-    def _pump_err(self) -> None:
         assert self.proc.stderr is not None
-        for line in self.proc.stderr:
-            self.stderr.append(line)
+        self.err = KeptLines(self.proc.stderr)
+
+    @property
+    def stderr(self) -> str:
+        """What it wrote on stderr so far."""
+        return self.err.text
 
     def expect(self, predicate: str, timeout: float = 10.0) -> str:
         """The next stdout line containing ``predicate``; fails after ``timeout`` seconds."""
@@ -48,7 +46,7 @@ class Child:
         if line is None:
             raise AssertionError(
                 f"no line containing {predicate!r} within {timeout} s; "
-                f"exit={self.proc.poll()} stderr={''.join(self.stderr)[-2000:]}"
+                f"exit={self.proc.poll()} stderr={self.stderr[-2000:]}"
             )
         return line
 
@@ -62,7 +60,7 @@ class Child:
                 self.proc.kill()
                 self.proc.wait()
         self.out.join()
-        self._err_reader.join(timeout=5)
+        self.err.join()
         for stream in (self.proc.stdout, self.proc.stderr):
             if stream is not None:
                 stream.close()
@@ -91,14 +89,10 @@ def demo_package(prefix: Path) -> None:
 
 def stderr_line(child: Child, text: str, timeout: float) -> str:
     """The first stderr line of ``child`` containing ``text``; fails after ``timeout`` s."""
-    deadline = time.monotonic() + timeout
-    while True:
-        found = [line for line in list(child.stderr) if text in line]
-        if found:
-            return found[0]
-        if time.monotonic() > deadline or child.proc.poll() is not None:
-            raise AssertionError(
-                f"no stderr line containing {text!r} within {timeout} s; "
-                f"exit={child.proc.poll()} stderr={''.join(child.stderr)[-2000:]}"
-            )
-        time.sleep(0.02)
+    line = child.err.first(text, timeout, ended=lambda: child.proc.poll() is not None)
+    if line is None:
+        raise AssertionError(
+            f"no stderr line containing {text!r} within {timeout} s; "
+            f"exit={child.proc.poll()} stderr={child.stderr[-2000:]}"
+        )
+    return line

@@ -83,6 +83,6 @@ def test_every_long_running_command_stops_promptly_under_load(
         except subprocess.TimeoutExpired:
             late.append(name)
             continue
-        assert status == 0, f"{name} exited with {status}: {''.join(child.stderr)[-2000:]}"
+        assert status == 0, f"{name} exited with {status}: {child.stderr[-2000:]}"
     waited = time.monotonic() - sent
     assert not late, f"still running {waited:.1f} s after SIGINT: {', '.join(late)}"

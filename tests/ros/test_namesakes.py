@@ -5,9 +5,8 @@ from __future__ import annotations
 
 import subprocess
 import sys
-import time
 
-from ros_helpers import NODES_DIR, Child
+from ros_helpers import NODES_DIR, Child, stderr_line
 
 from launchkit.ros.keyexpr import domain_id
 
@@ -25,14 +24,6 @@ def launchkit(*args: str) -> subprocess.CompletedProcess[str]:
     )
 
 
-def wait_stderr(child: Child, text: str, timeout: float) -> None:
-    """Wait until ``child`` has written ``text`` on stderr (its lines arrive on a thread)."""
-    deadline = time.monotonic() + timeout
-    while text not in "".join(child.stderr):
-        assert time.monotonic() < deadline, f"no {text!r} within {timeout} s: {child.stderr}"
-        time.sleep(0.05)
-
-
 def test_two_nodes_of_one_name_in_the_graph_warn_and_the_tools_show_both(
     router: str, children: list[Child]
 ) -> None:
@@ -41,7 +32,7 @@ def test_two_nodes_of_one_name_in_the_graph_warn_and_the_tools_show_both(
         children[-1].expect("talker ready", timeout=15)
     first, second = children
     for twin in (second, first):  # the one that joined, and the one already there
-        wait_stderr(twin, WARNING.format(domain=domain_id()), timeout=10)
+        stderr_line(twin, WARNING.format(domain=domain_id()), timeout=10)
 
     listed = launchkit("node", "list")
     assert listed.returncode == 0 and listed.stdout.split() == ["/talker", "/talker"]
@@ -53,4 +44,4 @@ def test_two_nodes_of_one_name_in_the_graph_warn_and_the_tools_show_both(
     assert info.returncode == 0 and info.stdout.startswith("/talker\n")
     assert info.stderr.startswith("WARNING: 2 nodes in the graph are named /talker")
     for twin in (first, second):
-        assert "".join(twin.stderr).count("another node named") == 1  # once
+        assert twin.stderr.count("another node named") == 1  # once

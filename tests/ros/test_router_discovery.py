@@ -156,7 +156,7 @@ def test_a_command_waits_for_the_router_saying_so_once(
         assert echo.proc.wait(timeout=30) == 0
     finally:
         router.close()
-    assert "".join(echo.stderr).count("Unable to connect") == 1
+    assert echo.stderr.count("Unable to connect") == 1
 
 
 def talker_launch(folder: Path) -> Child:

@@ -65,7 +65,7 @@ def test_a_listener_node_looks_up_what_a_broadcaster_node_sends(router: str) -> 
             ': "gripper" passed to lookupTransform argument source_frame does not exist. '
         )
         listener.expect("done", timeout=30)
-        assert listener.stop(timeout=20) == 0, "".join(listener.stderr)[-2000:]
+        assert listener.stop(timeout=20) == 0, listener.stderr[-2000:]
     finally:
         if listener is not None:
             listener.stop()

@@ -11,8 +11,6 @@ import os
 import signal
 import subprocess
 import sys
-import threading
-import time
 from collections.abc import Callable, Iterator
 from typing import Any
 
@@ -20,7 +18,7 @@ import pytest
 
 from tests.stock.conftest import probe_node
 from tests.stock.conftest import spin_until as stock_spin_until
-from tests.support import hosted_router
+from tests.support import KeptLines, hosted_router
 
 NODE = "launchkit.stock.turtlesim.turtlesim_node"
 DEADLINE = 20.0
@@ -39,45 +37,41 @@ class Program:
             start_new_session=True,
             env={**os.environ, **(env or {})},
         )
-        self.out: list[str] = []
-        self.err: list[str] = []
-        self._pumps = [
-            threading.Thread(target=self._pump, args=(self.proc.stdout, self.out), daemon=True),
-            threading.Thread(target=self._pump, args=(self.proc.stderr, self.err), daemon=True),
-        ]
-        for pump in self._pumps:
-            pump.start()
+        assert self.proc.stdout is not None and self.proc.stderr is not None
+        self._out = KeptLines(self.proc.stdout)
+        self._err = KeptLines(self.proc.stderr)
 
-    @staticmethod
-    def _pump(stream: Any, into: list[str]) -> None:
-        for line in stream:
-            into.append(line.rstrip("\n"))
+    @property
+    def out(self) -> list[str]:
+        """Its stdout lines so far."""
+        return self._out.lines
+
+    @property
+    def err(self) -> list[str]:
+        """Its log (stderr) lines so far."""
+        return self._err.lines
 
     def mark(self) -> int:
         """Where the log (stderr) is now: :meth:`wait_log` looks after it."""
         return len(self.err)
 
-    def wait_line(self, lines: list[str], text: str, after: int, what: str) -> str:
+    def wait_line(self, lines: KeptLines, text: str, after: int, what: str) -> str:
         """The first line of ``lines`` from ``after`` on containing ``text``."""
-        deadline = time.monotonic() + DEADLINE
-        while True:
-            found = [line for line in lines[after:] if text in line]
-            if found:
-                return found[0]
-            if time.monotonic() > deadline or self.proc.poll() is not None:
-                raise AssertionError(
-                    f"no {what} line containing {text!r} within {DEADLINE} s "
-                    f"(exit {self.proc.poll()}); stdout: {self.out[-20:]}; stderr: {self.err[-20:]}"
-                )
-            time.sleep(0.02)
+        found = lines.first(text, DEADLINE, after=after, ended=lambda: self.proc.poll() is not None)
+        if found is None:
+            raise AssertionError(
+                f"no {what} line containing {text!r} within {DEADLINE} s "
+                f"(exit {self.proc.poll()}); stdout: {self.out[-20:]}; stderr: {self.err[-20:]}"
+            )
+        return found
 
     def wait_log(self, text: str, after: int = 0) -> str:
         """The first log line (stderr) after ``after`` containing ``text``."""
-        return self.wait_line(self.err, text, after, "log")
+        return self.wait_line(self._err, text, after, "log")
 
     def wait_out(self, text: str, after: int = 0) -> str:
         """The first stdout line after ``after`` containing ``text``."""
-        return self.wait_line(self.out, text, after, "stdout")
+        return self.wait_line(self._out, text, after, "stdout")
 
     def stop(self) -> int:
         """SIGINT to the group, SIGKILL after a deadline; the exit status."""
@@ -88,8 +82,8 @@ class Program:
         except subprocess.TimeoutExpired:
             os.killpg(self.proc.pid, signal.SIGKILL)
             self.proc.wait()
-        for pump in self._pumps:
-            pump.join(5)
+        self._out.join()
+        self._err.join()
         for stream in (self.proc.stdout, self.proc.stderr):
             if stream is not None:
                 stream.close()
