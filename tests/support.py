@@ -96,6 +96,14 @@ class OutputLines(_LineReader):
                 return line
         return None
 
+    def expect(self, text: str, timeout: float, context: Callable[[], str]) -> str:
+        """The next line containing ``text``; after ``timeout`` seconds without one, an
+        AssertionError saying so and what ``context()`` tells of the process."""
+        line = self.next(lambda line: text in line, timeout)
+        if line is None:
+            raise AssertionError(f"no line containing {text!r} within {timeout} s; {context()}")
+        return line
+
     def drain(self) -> list[str]:
         """The lines that came and were not taken yet (taken now)."""
         taken = []

@@ -78,13 +78,14 @@ class Proc:
 
     def expect(self, text: str, timeout: float = 30.0) -> str:
         """The next line containing ``text``; fails after ``timeout`` s naming what came."""
-        line = self.out.next(lambda line: text in line, timeout)
-        if line is None:
-            raise AssertionError(
-                f"no line containing {text!r} within {timeout} s from {self.argv[4:]}; "
-                f"exit={self.proc.poll()}; last lines:\n" + "\n".join(self.seen[-30:])
-            )
-        return line
+        return self.out.expect(
+            text,
+            timeout,
+            lambda: (
+                f"from {self.argv[4:]}; exit={self.proc.poll()}; last lines:\n"
+                + "\n".join(self.seen[-30:])
+            ),
+        )
 
     def rest(self) -> list[str]:
         """The lines printed since the last one taken (taken now)."""

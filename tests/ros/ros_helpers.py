@@ -42,13 +42,9 @@ class Child:
 
     def expect(self, predicate: str, timeout: float = 10.0) -> str:
         """The next stdout line containing ``predicate``; fails after ``timeout`` seconds."""
-        line = self.out.next(lambda line: predicate in line, timeout)
-        if line is None:
-            raise AssertionError(
-                f"no line containing {predicate!r} within {timeout} s; "
-                f"exit={self.proc.poll()} stderr={self.stderr[-2000:]}"
-            )
-        return line
+        return self.out.expect(
+            predicate, timeout, lambda: f"exit={self.proc.poll()} stderr={self.stderr[-2000:]}"
+        )
 
     def stop(self, timeout: float = 5.0) -> int:
         """SIGINT, then SIGKILL after ``timeout``; the exit status."""
