@@ -197,7 +197,7 @@ def _pub(args: argparse.Namespace) -> int:
         print("publisher: beginning loop")
         rate = Rate(args.rate, Clock(clock_type=ClockType.STEADY_TIME))
         count = 0
-        while True:
+        while node.context.ok():
             count += 1
             print(f"publishing #{count}: {_one_line(msg)}\n", flush=True)
             pub.publish(msg)
