@@ -148,7 +148,7 @@ def test_memory_is_bounded_inside_one_call() -> None:
 def test_a_runaway_call_fails_the_check_naming_the_file_line_and_limit(tmp_path: Path) -> None:
     path = tmp_path / "slow.launch.xml"
     slow = SLOW_CALL.replace("<", "&lt;")
-    path.write_text(f'<launch>\n  <log message="$(eval \'{slow}\')"/>\n</launch>\n')
+    path.write_text(f"<launch>\n  <log message=\"$(eval '{slow}')\"/>\n</launch>\n")
     started = time.monotonic()
     result = run_launchkit("check", str(path), cwd=tmp_path)
     assert time.monotonic() - started < 30  # it used to run 84 s and print ok
