@@ -12,6 +12,7 @@ from launchkit.ros.context import Context, default_context
 from launchkit.ros.executor import Executor, Work, WorkQueue
 from launchkit.ros.keyexpr import node_token, topic_key
 from launchkit.ros.logging import RcutilsLogger, apply_log_levels
+from launchkit.ros.namesakes import NamesakeWatch
 from launchkit.ros.node_graph import GraphQueries
 from launchkit.ros.node_params import ParameterMethods, ParameterStore
 from launchkit.ros.params import Parameter, overrides_for
@@ -93,6 +94,9 @@ class Node(ParameterMethods, GraphQueries):
             )
         )
         self.context.add_node(self)
+        own = (self._zid, str(self._node_id))
+        namespace, name, warn = self._namespace, self._name, self._logger.warning
+        self._own(NamesakeWatch(session, self.context.domain_id, own, namespace, name, warn))
 
         self._params.post_set.append(self._on_params_set)
         self.declare_parameter("use_sim_time", False)

@@ -1,4 +1,4 @@
-"""``launchkit topic|node|service|param|interface|router``: argument parsing and dispatch."""
+"""``launchkit topic|node|service|param|interface|router|tf``: argument parsing and dispatch."""
 
 from __future__ import annotations
 
@@ -18,6 +18,7 @@ _FAMILIES = {
     "param": "launchkit.ros_cli.param_commands",
     "interface": "launchkit.ros_cli.interface_commands",
     "router": "launchkit.ros_cli.router_commands",
+    "tf": "launchkit.ros_cli.tf_commands",
 }
 
 

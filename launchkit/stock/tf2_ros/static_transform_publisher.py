@@ -66,9 +66,7 @@ def main(argv: list[str]) -> int:
     if arguments.help or arguments.transform is None:
         print(USAGE, flush=True)
         return 0
-    ros.init(argv)
-    node = ros.Node(node_name())
-    try:
+    with _entry.ros_node(argv, node_name()) as node:
         given = arguments.transform
         StaticTransformBroadcaster(node).sendTransform(_transform_message(node, given))
         # as tf2_ros, what the command line said (parameter overrides are not shown)
@@ -81,9 +79,6 @@ def main(argv: list[str]) -> int:
             f"from '{given.parent}' to '{given.child}'"
         )
         ros.spin(node)
-    finally:
-        node.destroy_node()
-        ros.shutdown()
     return 0
 
 

@@ -64,36 +64,35 @@ def main(argv: list[str]) -> int:
         raise UserError(f"{len(args)} argument(s) given", expected=USAGE)
     source, target = args[0], args[1]
     period = 1.0 / rate_of(args[2]) if len(args) == 3 else 1.0
-    ros.init(argv)
-    stopped = threading.Event()  # Ctrl-C shuts the context down: stop sleeping at once
-    ros.default_context.on_shutdown(stopped.set)
-    node = ros.Node("tf2_echo")
-    buffer = Buffer()
-    listener = TransformListener(buffer, node, spin_thread=True)
-    try:
-        while ros.ok():
-            ready, why = buffer.can_transform(source, target, ros.Time(), return_debug_tuple=True)
-            if ready:
-                break
-            node.get_logger().info(
-                f"Waiting for transform {source} ->  {target}: {why}", throttle_duration_sec=1.0
-            )
-            stopped.wait(period)
-        while ros.ok():
-            try:
-                print(report(buffer.lookup_transform(source, target, ros.Time())), flush=True)
-            except TransformException as error:
-                print(
-                    f"Failure at {node.get_clock().now().nanoseconds / 1e9}\n"
-                    f"Exception thrown:{error}\n"
-                    f"The current list of frames is:\n{buffer.all_frames_as_string()}",
-                    flush=True,
+    with _entry.ros_node(argv, "tf2_echo") as node:
+        stopped = threading.Event()  # Ctrl-C shuts the context down: stop sleeping at once
+        ros.default_context.on_shutdown(stopped.set)
+        buffer = Buffer()
+        listener = TransformListener(buffer, node, spin_thread=True)
+        try:
+            while ros.ok():
+                ready, why = buffer.can_transform(
+                    source, target, ros.Time(), return_debug_tuple=True
                 )
-            stopped.wait(period)
-    finally:
-        del listener  # stops its spinning thread
-        node.destroy_node()
-        ros.shutdown()
+                if ready:
+                    break
+                node.get_logger().info(
+                    f"Waiting for transform {source} ->  {target}: {why}", throttle_duration_sec=1.0
+                )
+                stopped.wait(period)
+            while ros.ok():
+                try:
+                    print(report(buffer.lookup_transform(source, target, ros.Time())), flush=True)
+                except TransformException as error:
+                    print(
+                        f"Failure at {node.get_clock().now().nanoseconds / 1e9}\n"
+                        f"Exception thrown:{error}\n"
+                        f"The current list of frames is:\n{buffer.all_frames_as_string()}",
+                        flush=True,
+                    )
+                stopped.wait(period)
+        finally:
+            del listener  # stops its spinning thread
     return 0
 
 

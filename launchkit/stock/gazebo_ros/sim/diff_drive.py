@@ -90,7 +90,7 @@ class DiffDriveParams:
 
     @classmethod
     def from_tags(
-        cls, tags: Mapping[str, str], log: Callable[[str], None] = lambda _m: None
+        cls, tags: Mapping[str, str], log: Callable[[str], object] = lambda _m: None
     ) -> DiffDriveParams:
         """Build from a plugin block's ``tag -> text``; ROS 1 tags are honoured and logged."""
         values: dict[str, str] = {}
