@@ -178,10 +178,18 @@ class Attacker:
             payload=payload,
             target=zenoh.QueryTarget.ALL,
             consolidation=zenoh.ConsolidationMode.NONE,
-            timeout=10.0,
+            timeout=5.0,
         ):
             if reply.ok is not None:
                 answers.append(reply.ok.payload.to_bytes())
+        return answers
+
+    def ask_answered(self, payload: bytes, timeout: float = 15.0) -> list[bytes]:
+        """:meth:`ask` again until the agent answers: a session that just joined, or an agent
+        that just started, may not have its route to the agent's queryable yet."""
+        deadline = time.monotonic() + timeout
+        while not (answers := self.ask(payload)):
+            assert time.monotonic() < deadline, f"the agent did not answer within {timeout} s"
         return answers
 
     def close(self) -> None:
@@ -234,7 +242,7 @@ def test_requests_captured_before_an_agent_restart_run_nothing(lab: Lab) -> None
     run.expect("[sleeper-1] sleeper-up")
     start = attacker.request("start")
     # the same run of the agent: a copy gets the first answer, nothing starts twice
-    (again,) = attacker.ask(start)
+    (again,) = attacker.ask_answered(start)
     assert b"restarted" not in again and refusal_of(again) is None
     time.sleep(WINDOW)
     assert len(lab.wait_sleepers(1)) == 1
@@ -242,7 +250,7 @@ def test_requests_captured_before_an_agent_restart_run_nothing(lab: Lab) -> None
     assert agent.stop() == 0
     assert lab.sleepers() == []
     agent = lab.agent()  # a new run of the agent
-    (answer,) = attacker.ask(start)
+    (answer,) = attacker.ask_answered(start)
     assert b'\\"restarted\\":true' in answer, answer  # sealed, but for this request only
     time.sleep(WINDOW)
     assert lab.sleepers() == [], "a start request of the agent's earlier run was executed"
@@ -309,7 +317,7 @@ def test_senders_without_the_key_get_nothing_signed(lab: Lab) -> None:
     wrong_key = b"w" * 64
     forged = {"op": "start", "agent": "hostb", "instance": "", "launch": "x", "seq": 1}
     for payload in (b"garbage", seal(wrong_key, REQUEST, forged)):
-        (answer,) = attacker.ask(payload)
+        (answer,) = attacker.ask_answered(payload)
         assert refusal_of(answer) is not None and b"mac" not in answer, answer
     agent.expect("refused a request: not sealed with this agent key")
 
