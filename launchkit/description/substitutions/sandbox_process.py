@@ -24,6 +24,7 @@ import time
 from pathlib import Path
 
 from launchkit.description.substitutions.sandbox_names import LimitError, Limits, SandboxError
+from launchkit.runtime.containment import own_helpers
 
 __all__ = ["Evaluator", "LimitError", "Limits", "SandboxError", "evaluate"]
 
@@ -92,6 +93,7 @@ class Evaluator:
             proc.wait()
             raise SandboxError(f"the evaluator process did not start within {STARTUP_TIMEOUT:g} s")
         self._proc = proc
+        own_helpers.add(proc.pid)  # the launcher's own: not a stray of its launch
         return proc
 
     def _answer(self, proc: subprocess.Popen[bytes], limits: Limits) -> bytes:
@@ -125,6 +127,7 @@ class Evaluator:
             proc.kill()
         if proc is not None:
             proc.wait()
+            own_helpers.discard(proc.pid)
             for stream in (proc.stdin, proc.stdout):
                 if stream is not None:
                     stream.close()
