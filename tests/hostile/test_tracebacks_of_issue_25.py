@@ -27,7 +27,7 @@ STOCK_NODES = {
     "launchkit.stock.robot_state_publisher.node": [],
     "launchkit.stock.joint_state_publisher.node": [],
     "launchkit.stock.joint_state_publisher_gui.node": [],
-    "launchkit.stock.gazebo_ros.server": [],
+    "launchkit.stock.gazebo_ros.gzserver": [],
     "launchkit.stock.gazebo_ros.diff_drive_node": [],
     "launchkit.stock.gazebo_ros.camera_node": [],
     "launchkit.stock.rclcpp_components.container": [],

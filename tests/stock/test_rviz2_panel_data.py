@@ -13,7 +13,7 @@ from typing import Any
 import numpy as np
 
 from launchkit.ros.keyexpr import Token
-from launchkit.ros.message_data import to_data
+from launchkit.ros.message_text import to_data
 from launchkit.ros.msgs import get_message
 from launchkit.stock.rviz2.graph_view import action_of, describe_graph
 from launchkit.stock.rviz2.hub import Hub

@@ -12,6 +12,12 @@ from __future__ import annotations
 from typing import TYPE_CHECKING
 
 from launchkit.description.substitutions.base import Call
+from launchkit.description.substitutions.sandbox_process import (
+    LimitError,
+    Limits,
+    SandboxError,
+    evaluate,
+)
 
 if TYPE_CHECKING:
     from launchkit.description.launch_context import LaunchContext
@@ -29,14 +35,6 @@ class Eval(Call):
         """The expression's value as text, or an error quoting the expression."""
         expression = self.arg(0, context)
         modules = [m.strip() for m in self.arg(1, context, "math").split(",") if m.strip()]
-        # only a launch that evaluates pays for the evaluator process
-        from launchkit.description.substitutions.sandbox_process import (
-            LimitError,
-            Limits,
-            SandboxError,
-            evaluate,
-        )
-
         try:
             return evaluate(expression, modules)
         except SandboxError as error:

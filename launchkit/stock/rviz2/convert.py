@@ -13,7 +13,7 @@ Every other type is sent as its fields (long arrays cut, as
 ``ros2 topic echo`` does) for the topic list's message view, and ``/rosout``'s log lines whole
 for the console. Any topic can also be had in its fields form (:func:`to_fields`): every field
 of the message, which the plot reads its numbers from. Both go through one generic conversion
-(:func:`launchkit.ros.message_data.to_data`), whatever containers the message class uses.
+(:func:`launchkit.ros.message_text.to_data`), whatever containers the message class uses.
 """
 
 from __future__ import annotations
@@ -26,7 +26,7 @@ from typing import Any
 
 import numpy as np
 
-from launchkit.ros.message_data import to_data
+from launchkit.ros.message_text import to_data
 from launchkit.ros.msgs import deserialize
 
 #: Longest array or string of a message shown whole in the topic list's message view.

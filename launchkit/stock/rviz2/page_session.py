@@ -35,7 +35,8 @@ from collections.abc import Awaitable, Callable
 from typing import Any
 
 from launchkit.errors import UserError
-from launchkit.ros.message_data import build, to_data
+from launchkit.ros.message_data import build
+from launchkit.ros.message_text import to_data
 from launchkit.ros.msgs import normalize_type_name, serialize
 from launchkit.stock.rviz2.convert import IMAGE_TYPES, to_json
 from launchkit.stock.rviz2.hub import Channel, Hub, Message

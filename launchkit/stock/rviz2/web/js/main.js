@@ -16,6 +16,7 @@ import { PublisherPanel } from "./publisher.js";
 import { Scene3D } from "./scene.js";
 import { TfTree } from "./tf.js";
 import { TfTreePanel } from "./tftree.js";
+import { TurtlesimPanel } from "./turtlesim.js";
 
 const $ = (id) => document.getElementById(id);
 
@@ -172,6 +173,7 @@ function onMessage(message) {
   }
   for (const display of state.displays) if (display.enabled && display.topics().includes(topic)) display.onMessage(topic, type, msg);
   sliders.onMessage(topic, type, msg);
+  tools.turtlesim.onMessage(topic, type, msg);
   if (topic === state.watched) {
     const shown = type === "std_msgs/msg/String" && msg.data.length > 2000 ? { data: msg.data.slice(0, 2000) + "…" } : msg.fields || msg;
     $("echo").textContent = `${topic} (${type})\n${JSON.stringify(shown, null, 1)}`;
@@ -221,7 +223,7 @@ const images = new ImagePanel(ctx, $("image-panel"), $("image-topic"), $("image"
 const sliders = new JointSliders(ctx, $("joints-panel"), $("joints"), $("joints-topic"), $("joints-center"), $("joints-randomize"));
 ctx.conn = new Connection(url, {
   hello: onHello,
-  topics: (m) => { state.topics = m.topics; images.topicsChanged(m.topics); renderTopics(); },
+  topics: (m) => { state.topics = m.topics; images.topicsChanged(m.topics); tools.turtlesim.topicsChanged(m.topics); renderTopics(); },
   rates: (m) => { state.rates = m.rates; renderTopics(); },
   sliders: (m) => sliders.sliderTopic(m.topic),
   msg: onMessage,
@@ -238,6 +240,8 @@ const tools = {
   services: new ServiceCallerPanel(ctx, $("services-panel")),
   publisher: new PublisherPanel(ctx, $("publisher-panel"), topicsOf),
   tf: new TfTreePanel(ctx, $("tf-panel")),
+  // the first turtlesim to appear takes the page from the 3D view to its panel
+  turtlesim: new TurtlesimPanel(ctx, $("turtlesim-panel"), () => { if (tabs.current === "view") tabs.select("turtlesim"); }),
 };
 const tabs = new PanelTabs($("tabs"), [
   { name: "view", title: "3D view", element: $("view") },
@@ -248,6 +252,7 @@ const tabs = new PanelTabs($("tabs"), [
   { name: "services", title: "Service caller", element: $("services-panel"), panel: tools.services },
   { name: "publisher", title: "Topic publisher", element: $("publisher-panel"), panel: tools.publisher },
   { name: "tf", title: "TF tree", element: $("tf-panel"), panel: tools.tf },
+  { name: "turtlesim", title: "turtlesim", element: $("turtlesim-panel"), panel: tools.turtlesim },
 ]);
 // driving keys belong to the 3D view: typing arrows in another panel moves nothing
 ctx.drivingKeys = () => tabs.current === "view";
