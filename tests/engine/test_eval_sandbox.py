@@ -3,6 +3,7 @@ expression can run long or grow large (issue #17, point 5; the time/size half of
 
 from __future__ import annotations
 
+import signal
 import time
 from pathlib import Path
 
@@ -132,6 +133,30 @@ def test_one_long_call_stops_at_the_time_limit() -> None:
         assert elapsed < 1 * WALL_FACTOR + 1, elapsed
         assert evaluator.evaluate("2 * 21", [], Limits()) == "42"  # a new evaluator process
     finally:
+        evaluator.close()
+
+
+class _Alarm(Exception):
+    pass
+
+
+def test_an_evaluation_interrupted_leaves_no_answer_behind() -> None:
+    # A signal (Ctrl-C) while the evaluator works: its late answer must not become the next
+    # expression's.
+    def ring(_signum: int, _frame: object) -> None:
+        raise _Alarm
+
+    evaluator = Evaluator()
+    previous = signal.signal(signal.SIGALRM, ring)
+    try:
+        assert evaluator.evaluate("1", [], Limits()) == "1"  # started before the alarm
+        signal.setitimer(signal.ITIMER_REAL, 0.2)
+        with pytest.raises(_Alarm):
+            evaluator.evaluate(SLOW_CALL, [], Limits(seconds=60))
+        assert evaluator.evaluate("2 * 21", [], Limits()) == "42"
+    finally:
+        signal.setitimer(signal.ITIMER_REAL, 0)
+        signal.signal(signal.SIGALRM, previous)
         evaluator.close()
 
 

@@ -63,7 +63,11 @@ class Evaluator:
             except OSError:
                 self._kill()
                 raise SandboxError("the evaluator process ended unexpectedly") from None
-            line = self._answer(proc, limits)
+            try:
+                line = self._answer(proc, limits)
+            except BaseException:  # a signal (Ctrl-C) while it evaluates: its answer would
+                self._kill()  # be read as the next expression's
+                raise
         try:
             reply = json.loads(line)
         except ValueError:
