@@ -29,11 +29,13 @@ def exit_promptly(status: int, cleanup_within: float = CLEANUP_BOUND) -> NoRetur
     If the cleanup has not finished within ``cleanup_within`` seconds (a transport that will
     not close), the process exits anyway: stopping must never hang.
     """
+    context = sys.modules.get("launchkit.ros.context")
+    if context is not None:
+        status = context.exit_status(status)
     watchdog = threading.Timer(cleanup_within, os._exit, (status,))
     watchdog.daemon = True
     watchdog.start()
     try:
-        context = sys.modules.get("launchkit.ros.context")
         if context is not None:
             context.shutdown_all()
         atexit._run_exitfuncs()

@@ -279,8 +279,12 @@ def _launch(args: argparse.Namespace, hooks: SupervisorHooks | None = None) -> i
     if args.show_all_subprocesses_output:
         os.environ["OVERRIDE_LAUNCH_PROCESS_OUTPUT"] = "both"
     from launchkit.ros_cli.router_options import federation_asked, federation_options
+    from launchkit.runtime.prctl import become_subreaper
 
     options = federation_options(args) if federation_asked(args) else None
+    # this process is the launch's: what its processes orphan is re-parented here, to be
+    # found and killed (launchkit.runtime.containment)
+    become_subreaper()
     try:
         return api.run(
             path,

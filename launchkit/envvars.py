@@ -14,6 +14,9 @@
                                       50; 0: all)
 ``LAUNCHKIT_LOG_RUN_MB``              after a run's log folder holds this much (MB), child output is
                                       no longer logged (default 1000; 0: no limit)
+``LAUNCHKIT_NO_CGROUP``               any value: ``launchkit run`` makes no cgroup for its
+                                      processes and relies on being their subreaper alone (see
+                                      ``launchkit/runtime/containment.py``)
 ``LAUNCHKIT_REMOTE_GRACE``            seconds an agent keeps a launch's processes once it lost the
                                       launcher (killed, or the link cut; default 10)
 ``LAUNCHKIT_ROUTER``                  the Zenoh router every node connects to (``tcp/HOST:PORT``,
@@ -72,6 +75,7 @@ ROUTER_IDLE_TIMEOUT = "LAUNCHKIT_ROUTER_IDLE_TIMEOUT"
 ROUTER_TRUSTED_USERS = "LAUNCHKIT_ROUTER_TRUSTED_USERS"
 SUPERVISOR_SOCKET = "LAUNCHKIT_SUPERVISOR_SOCKET"
 AGENT_KEY = "LAUNCHKIT_AGENT_KEY"
+NO_CGROUP = "LAUNCHKIT_NO_CGROUP"
 AGENT_TIMEOUT = "LAUNCHKIT_AGENT_TIMEOUT"
 REMOTE_GRACE = "LAUNCHKIT_REMOTE_GRACE"
 TIMEOUT_SCALE = "LAUNCHKIT_TIMEOUT_SCALE"

@@ -35,6 +35,8 @@ _Loader: type[yaml.SafeLoader] = getattr(yaml, "CSafeLoader", yaml.SafeLoader)
 MERGE_TAG = "tag:yaml.org,2002:merge"
 _STR_TAG = "tag:yaml.org,2002:str"
 _DEFAULT_TAGS = {"tag:yaml.org,2002:map", "tag:yaml.org,2002:seq"}
+#: The scalar types YAML's explicit tags name (``!!int``, ...).
+_SCALAR_KINDS = {"bool", "int", "float", "null", "timestamp", "binary", "str"}
 
 
 class Node:
@@ -237,9 +239,9 @@ class _Composer:
             else:
                 scalar = yaml.ScalarNode(tag, event.value, style=event.style)
                 value = self.loader.construct_object(scalar)
-        except (yaml.constructor.ConstructorError, ValueError, OverflowError):
+        except Exception:  # PyYAML's constructors fail in many ways on a text the tag refuses
             raise LaunchFileError(
-                f"YAML tag {tag!r} is not supported",
+                _tag_refusal(tag, event.value),
                 self.where(event.start_mark),
                 expected="a plain scalar (text, number, boolean)",
             ) from None
@@ -318,3 +320,12 @@ def plain(node: Node) -> Any:
             )
         explicit[key.value] = plain(value)
     return {**merged, **explicit}
+
+
+def _tag_refusal(tag: str, text: str) -> str:
+    """Why a scalar with an explicit ``tag`` cannot be read: the tag is unknown, or ``text``
+    is not a value of that type (``!!int ""``, ``!!bool maybe``, ``!!timestamp x``)."""
+    kind = tag.rsplit(":", 1)[-1]
+    if tag == f"tag:yaml.org,2002:{kind}" and kind in _SCALAR_KINDS:
+        return f"{text!r} is not a valid !!{kind}"
+    return f"YAML tag {tag!r} is not supported"

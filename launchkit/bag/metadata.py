@@ -134,8 +134,12 @@ def write_metadata(directory: Path, summary: BagSummary) -> Path:
     """Write ``DIR/metadata.yaml`` atomically (a reader never sees half a file)."""
     path = directory / METADATA_FILE
     temporary = path.with_suffix(".yaml.tmp")
-    temporary.write_text(summary.to_yaml(), encoding="utf-8")
-    os.replace(temporary, path)
+    try:
+        temporary.write_text(summary.to_yaml(), encoding="utf-8")
+        os.replace(temporary, path)
+    except OSError:
+        temporary.unlink(missing_ok=True)  # a full disk: leave nothing half-written behind
+        raise
     return path
 
 

@@ -29,6 +29,7 @@ from launchkit.bag.metadata import (
     write_metadata,
 )
 from launchkit.bag.storage import STORAGES, compress_file, decompress_file
+from launchkit.errors import RuntimeLaunchError
 from launchkit.ros.msgs import MessageTypeError, type_hash
 
 _ZSTD_MAGIC = b"\x28\xb5\x2f\xfd"
@@ -131,7 +132,21 @@ def _known_hash(type_name: str) -> str:
 
 
 def reindex(path: Path, log: Log = print) -> BagSummary:
-    """Rebuild ``path/metadata.yaml``; repairs what a killed recorder left first."""
+    """Rebuild ``path/metadata.yaml``; repairs what a killed recorder left first. A full disk
+    (or any other failure to write) is a :class:`RuntimeLaunchError`: every step replaces a
+    file only once its new version is complete, so the bag is as it was before that step."""
+    try:
+        return _reindex(path, log)
+    except OSError as error:
+        where = f" ({error.filename})" if error.filename else ""
+        raise RuntimeLaunchError(
+            f"{path}: cannot reindex: {error.strerror or error}{where}",
+            expected="room to write the repaired files and metadata.yaml",
+            hint="nothing is half-written: free some space and run `launchkit bag reindex` again",
+        ) from None
+
+
+def _reindex(path: Path, log: Log) -> BagSummary:
     storage, files = storage_files(path)
     if storage == "sqlite3":  # before any rename: the journal is found by the file's name
         for file in files:

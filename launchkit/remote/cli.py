@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import argparse
+import dataclasses
 import signal
 import socket
 import sys
@@ -12,11 +13,12 @@ from types import FrameType
 
 from launchkit.envvars import AGENT_KEY, ROUTER
 from launchkit.errors import LaunchkitError, RuntimeLaunchError
+from launchkit.remote.access import LaunchersError
 from launchkit.remote.agent import Agent
 from launchkit.remote.keys import default_key_path, load_key
 from launchkit.remote.protocol import check_name
 from launchkit.ros.endpoints import router_endpoint
-from launchkit.ros.federation import describe
+from launchkit.ros.federation import RouterOptions, describe
 from launchkit.ros.router import start_router
 from launchkit.ros_cli.router_options import add_federation_options, federation_options
 
@@ -43,9 +45,34 @@ def build_parser() -> argparse.ArgumentParser:
         help=f"the agent key shared with the launchers (default ${AGENT_KEY} or "
         "~/.config/launchkit/agent.key, made on first start)",
     )
+    parser.add_argument(
+        "--launchers",
+        metavar="NAMES",
+        help="with --mtls: only this host's processes and the hosts whose certificate has one "
+        "of these common names (comma-separated) may use the agent's router (Zenoh access "
+        "control; other hosts of your CA are shut out)",
+    )
     add_federation_options(parser)
     parser.add_argument("--debug", action="store_true", help=argparse.SUPPRESS)
     return parser
+
+
+def _admit_launchers(options: RouterOptions, text: str) -> RouterOptions:
+    """``options`` with access control admitting only this host and the ``--launchers``."""
+    from launchkit.remote.access import launcher_rules, parse_launchers
+
+    names = parse_launchers(text)
+    if not options.mtls:
+        raise LaunchersError(
+            "--launchers without --mtls: certificate names are proven by mutual TLS only",
+            expected="--mtls DIR (or $LAUNCHKIT_ROUTER_MTLS) with --launchers",
+        )
+    if options.access is not None:
+        raise LaunchersError(
+            "--launchers and --access both given", expected="one of them (--access: your rules)"
+        )
+    _say("info", f"access control: only this host and {', '.join(names)} may use this router")
+    return dataclasses.replace(options, rules=launcher_rules(names))
 
 
 def _say(level: str, message: str) -> None:
@@ -58,6 +85,8 @@ def main(argv: list[str]) -> int:
     name = check_name(args.name or socket.gethostname().split(".")[0] or "localhost")
     endpoint = router_endpoint(args.router)
     options = federation_options(args)
+    if args.launchers is not None:
+        options = _admit_launchers(options, args.launchers)
     key_path = Path(args.key).expanduser() if args.key else default_key_path()
     created = not key_path.exists()
     key = load_key(key_path, create=True)
@@ -69,6 +98,13 @@ def main(argv: list[str]) -> int:
         _say("info", line)
     for warning in router.warnings:
         _say("warn", warning)
+    if not router.hosted and args.launchers is not None:
+        router.close()
+        raise LaunchersError(
+            f"a router already listens at {endpoint}: --launchers needs the agent to host its "
+            "router",
+            expected="another --router endpoint, or that router stopped first",
+        )
     if not router.hosted and not options.empty:
         _say(
             "warn",

@@ -2,46 +2,41 @@
 
 Keys (the agent's ``NAME`` and the launch's id are single key chunks; a label is quoted)::
 
-    launchkit/agent/NAME/instance/ID     liveliness: the agent is up (ID changes per start)
-    launchkit/agent/NAME/requests        queryable: start a process, signal it
-    launchkit/launch/LAUNCH/launcher     liveliness: the launcher is up
+    launchkit/agent/NAME/instance/ID     liveliness: agent NAME runs (ID changes per start);
+                                         a hint only: tokens are not sealed
+    launchkit/agent/NAME/requests        queryable: the agent's requests
     launchkit/launch/LAUNCH/events/LABEL/N   the agent's output lines and exit of LABEL's
                                          N-th incarnation
 
-Every payload is sealed: ``{"body": JSON text, "mac": HMAC-SHA256(key, body)}`` with the agent
-key (:mod:`launchkit.remote.keys`); requests also carry a time and a nonce, so a captured one
-cannot be played again. Requests::
+Every payload is sealed (:mod:`launchkit.remote.sealing`). Requests (each with the agent's
+``agent`` name and ``instance``, the ``launch`` and the launcher's request number ``seq``)::
 
-    {"op": "start", "launch": ID, "label": "talker-2", "incarnation": 1, "grace": 10.0,
-     "spec": {...}}         -> {"ok": true, "pid": 4242} | {"ok": false, "error": "..."}
-    {"op": "signal", "launch": ID, "label": "talker-2", "incarnation": 1, "signum": 2}
-                            -> {"ok": true}
+    {"op": "hello"}          -> {"ok": true}   the only request without ``instance``: the
+                                               sealed answer tells the launcher the instance
+    {"op": "start", "label": "talker-2", "incarnation": 1, "grace": 10.0, "spec": {...}}
+                             -> {"ok": true, "pid": 4242} | {"ok": false, "error": "..."}
+    {"op": "signal", "label": "talker-2", "incarnation": 1, "signum": 2}  -> {"ok": true}
+    {"op": "alive", "grace": 10.0}   -> {"ok": true}   the launcher is alive (every
+                                               :func:`heartbeat_period` seconds)
 
-Events: ``{"kind": "line", "stream": "stdout", "text": "..."}``, ``{"kind": "exit", "code": 0}``.
+Every answer repeats ``launch``, ``seq``, ``agent`` and ``instance``; a request for another
+run of the agent gets ``{"ok": false, "restarted": true}``. Events: ``{"kind": "line", "stream":
+"stdout", "text": "..."}`` and ``{"kind": "exit", "code": 0}``, with ``label``,
+``incarnation`` and their own ``seq``.
 """
 
 from __future__ import annotations
 
-import hashlib
-import hmac
-import json
 import re
+import secrets
 import sys
-import time
-import uuid
-from collections.abc import Mapping
 from typing import Any
 from urllib.parse import quote
 
 from launchkit.description.process_spec import ProcessSpec
 from launchkit.errors import UserError
 
-MAX_SKEW = 300.0  # seconds a request's time may differ from the agent's clock
 _NAME = re.compile(r"^[A-Za-z0-9_.-]{1,64}$")
-
-
-class ProtocolError(Exception):
-    """A message that is not sealed with the key, or malformed."""
 
 
 class AgentNameError(UserError):
@@ -81,19 +76,6 @@ def agent_requests(name: str) -> str:
     return f"launchkit/agent/{name}/requests"
 
 
-def launcher_token(launch: str) -> str:
-    """The liveliness key of a launcher."""
-    return f"launchkit/launch/{launch}/launcher"
-
-
-LAUNCHER_TOKENS = "launchkit/launch/*/launcher"
-
-
-def launch_of_token(key: str) -> str:
-    """The launch id in a launcher token key."""
-    return key.split("/")[2]
-
-
 def events_key(launch: str, label: str, incarnation: int) -> str:
     """Where the agent publishes one incarnation's output and exit."""
     return f"launchkit/launch/{launch}/events/{quote(label, safe='')}/{incarnation}"
@@ -105,54 +87,19 @@ def events_of(launch: str) -> str:
 
 
 def new_id() -> str:
-    """A fresh launch or agent instance id."""
-    return uuid.uuid4().hex[:16]
+    """A fresh launch or agent instance id (96 random bits: never guessed, never repeated)."""
+    return secrets.token_hex(12)
 
 
-def seal(key: bytes, message: Mapping[str, Any]) -> bytes:
-    """``message`` sealed with ``key``."""
-    body = json.dumps(message, separators=(",", ":"))
-    mac = hmac.new(key, body.encode(), hashlib.sha256).hexdigest()
-    return json.dumps({"body": body, "mac": mac}).encode()
+def heartbeat_period(grace: float) -> float:
+    """How often a launcher tells an agent it is alive, for a grace period of ``grace``."""
+    return min(1.0, max(0.1, grace / 4))
 
 
-def unseal(key: bytes, data: bytes) -> dict[str, Any]:
-    """The message in ``data`` if it was sealed with ``key``; :class:`ProtocolError` if not."""
-    try:
-        outer = json.loads(data)
-        body, mac = str(outer["body"]), str(outer["mac"])
-        expected = hmac.new(key, body.encode(), hashlib.sha256).hexdigest()
-        if not hmac.compare_digest(mac, expected):
-            raise ProtocolError("not sealed with this agent key")
-        message = json.loads(body)
-    except (ValueError, KeyError, TypeError) as error:
-        raise ProtocolError(f"malformed message: {error}") from None
-    if not isinstance(message, dict):
-        raise ProtocolError("malformed message: not an object")
-    return message
-
-
-def request(op: str, **fields: Any) -> dict[str, Any]:
-    """A request with its time and nonce."""
-    return {"op": op, "time": time.time(), "nonce": new_id(), **fields}
-
-
-class NonceCheck:
-    """Refuses requests too old, too new, or seen before (within :data:`MAX_SKEW`)."""
-
-    def __init__(self) -> None:
-        self._seen: dict[str, float] = {}
-
-    def check(self, message: Mapping[str, Any]) -> None:
-        """Raise :class:`ProtocolError` unless ``message`` is fresh and new."""
-        now = time.time()
-        sent, nonce = float(message.get("time", 0)), str(message.get("nonce", ""))
-        if abs(now - sent) > MAX_SKEW:
-            raise ProtocolError(f"request time is {now - sent:+.0f} s off this host's clock")
-        if not nonce or nonce in self._seen:
-            raise ProtocolError("request replayed")
-        self._seen = {n: t for n, t in self._seen.items() if now - t < 2 * MAX_SKEW}
-        self._seen[nonce] = now
+def silence_limit(grace: float) -> float:
+    """How long an agent waits without a word of a launcher before it stops that launch's
+    processes (the grace period, but never less than three heartbeats)."""
+    return max(grace, 3 * heartbeat_period(grace))
 
 
 def encode_spec(spec: ProcessSpec) -> dict[str, Any]:

@@ -49,6 +49,7 @@ class RemoteProcess(ProcessPipes):
         self._hosts = hosts
         self._pid: int | None = None
         self._code: int | None = None
+        self._last_seq = 0  # of the events of the current incarnation
         self._writers: dict[str, int] = {}
         self._exit_w: int | None = None
         self._lock = threading.Lock()
@@ -65,6 +66,7 @@ class RemoteProcess(ProcessPipes):
         with self._lock:
             self.incarnation += 1
             self._code, self._pid = None, None
+            self._last_seq = 0
             self._done.clear()
             out_r, out_w = os.pipe()
             err_r, err_w = os.pipe()
@@ -89,11 +91,17 @@ class RemoteProcess(ProcessPipes):
 
     # -- from the agent (Zenoh threads) ---------------------------------------------------
 
-    def deliver(self, incarnation: int, event: dict[str, Any]) -> None:
-        """An event of the agent for ``incarnation`` (older incarnations' are dropped)."""
+    def deliver(self, instance: str, incarnation: int, event: dict[str, Any]) -> None:
+        """An event of the agent's run ``instance`` for ``incarnation``: dropped unless that
+        run started the current incarnation and the event's ``seq`` is the next one (a copy
+        or an old event of the same incarnation means nothing)."""
         with self._lock:
-            if incarnation != self.incarnation or self._code is not None:
+            if incarnation != self.incarnation or instance != self.instance:
                 return
+            seq = event.get("seq")
+            if self._code is not None or not isinstance(seq, int) or seq <= self._last_seq:
+                return
+            self._last_seq = seq
             if event.get("kind") == "line":
                 writer = self._writers.get(str(event.get("stream")))
                 if writer is not None:

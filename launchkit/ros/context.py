@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import atexit
+import contextlib
 import os
 import signal
 import sys
@@ -10,11 +11,13 @@ import threading
 import weakref
 from collections.abc import Callable
 from types import FrameType
-from typing import TYPE_CHECKING, Protocol
+from typing import TYPE_CHECKING, Any, Protocol
 
 from launchkit.ros.arguments import RosArguments, parse_ros_args
 from launchkit.ros.keyexpr import domain_id
 from launchkit.ros.logging import get_logger
+from launchkit.ros.router_access import ForeignRouterError
+from launchkit.ros.router_watch import watch_router
 from launchkit.ros.session import (
     SESSION_CONFIG_ENV,
     client_config,
@@ -66,6 +69,10 @@ class Context:
         self._interrupted = False
         self._shutdown_callbacks: list[Callable[[], None]] = []
         self._session: zenoh.Session | None = None
+        self._router_watch: Any = None
+        #: Set when the session linked to another user's router: nothing is delivered from then
+        #: on, the context is interrupted and the process exits 1.
+        self.refused: ForeignRouterError | None = None
         self._graph: Graph | None = None
         self._next_id = 0
         self.argv: list[str] = []
@@ -116,12 +123,26 @@ class Context:
                     ensure_router(endpoint, autostart=self.start_router, say=_say)
                 config = client_config(self.router) if self.client else peer_config(self.router)
                 self._session = open_session(config)
+                self._router_watch = watch_router(self._session, endpoint, self._refuse)
                 if not wait_for_router(self._session, ROUTER_WAIT):
                     get_logger("launchkit.ros").warn(
                         f"Unable to connect to a ROS router at {endpoint}: this node keeps "
                         "trying (start `launchkit router` or a launch there)"
                     )
             return self._session
+
+    def _refuse(self, error: ForeignRouterError) -> None:  # a Zenoh thread
+        """The session linked to another user's router: stop delivering at once, leave it,
+        and end the process's work (it exits 1: :func:`exit_status`, ``_at_exit``)."""
+        if self.refused is not None:
+            return
+        self.refused = error
+        _refusals.append(error)
+        get_logger("launchkit.ros").error(f"after losing its router: {error.message}")
+        session = self._session
+        if session is not None:  # not from this thread: Zenoh is making the link
+            threading.Thread(target=close_session, args=(session,), daemon=True).start()
+        self.interrupt()
 
     @property
     def graph(self) -> Graph:
@@ -165,6 +186,10 @@ class Context:
             if self._graph is not None:
                 self._graph.close()
                 self._graph = None
+            if self._router_watch is not None:
+                with contextlib.suppress(Exception):  # its session may be closed already
+                    self._router_watch.undeclare()
+                self._router_watch = None
             if self._session is not None:
                 close_session(self._session)
                 self._session = None
@@ -175,6 +200,7 @@ def _say(level: str, message: str) -> None:
 
 
 default_context = Context()
+_refusals: list[ForeignRouterError] = []  # of every context of the process
 _signals_installed = False
 _interrupts = 0
 
@@ -205,8 +231,19 @@ def shutdown_all() -> None:
     close_all()
 
 
+def exit_status(status: int) -> int:
+    """``status``, or 1 when a context of this process refused another user's router (a
+    process that had to stop talking ends in failure, whatever its code made of it)."""
+    return 1 if _refusals and status == 0 else status
+
+
 def _at_exit() -> None:
     shutdown_all()
+    if _refusals:
+        for stream in (sys.stdout, sys.stderr):
+            with contextlib.suppress(OSError, ValueError):
+                stream.flush()
+        os._exit(1)
 
 
 # zenoh's callback threads are not daemons, and Python joins such threads *before* it runs

@@ -41,13 +41,15 @@ class RouterOptionsError(UserError):
 @dataclass(frozen=True)
 class RouterOptions:
     """Extra ``listen`` and ``connect`` endpoints, a ``tls`` folder (``mtls``: clients must
-    show a certificate too) and an ``access`` control file; empty: loopback only."""
+    show a certificate too) and an ``access`` control file, or access control ``rules`` made by
+    launchkit (JSON text, for ``launchkit agent --launchers``); empty: loopback only."""
 
     listen: tuple[str, ...] = ()
     connect: tuple[str, ...] = ()
     tls: str | None = None
     mtls: bool = False
     access: str | None = None
+    rules: str | None = None
 
     @classmethod
     def from_sources(
@@ -108,7 +110,10 @@ class RouterOptions:
         return settings
 
     def access_control(self) -> str | None:
-        """The JSON5 text of the ``access_control`` section, if an access file is given."""
+        """The JSON5 text of the ``access_control`` section, if an access file or rules are
+        given."""
+        if self.rules is not None:
+            return self.rules
         return None if self.access is None else Path(self.access).read_text()
 
     def exposure_warnings(self, endpoint: str) -> list[str]:
@@ -124,7 +129,7 @@ class RouterOptions:
                     "services, and the traffic is readable on the network; use a tls/ "
                     "endpoint with --mtls (docs/multi-host.md)"
                 )
-            elif not self.mtls and self.access is None:
+            elif not self.mtls and self.access is None and self.rules is None:
                 warnings.append(
                     f"listening on {listen} with server-only TLS: the traffic is encrypted "
                     "but any client can connect and command the robot; use --mtls to admit "

@@ -133,6 +133,9 @@ class Service(_ServiceEntity):
         sequence = request_info.sequence if request_info else 0
         gid = request_info.gid if request_info else self.gid
 
+        if self.node.context.refused is not None:
+            return  # a request through another user's router gets no answer
+
         def reply(data: bytes) -> None:
             attachment = encode_attachment(sequence, time.time_ns(), gid)
             query.reply(self.key, data, attachment=attachment)
@@ -243,6 +246,9 @@ class Client(_ServiceEntity):
         else:
             payload = serialize(request, self.type_name + "_Request")
         future = Future(lambda item: self.node.post(item))
+        if self.node.context.refused is not None:  # nothing leaves for another user's router
+            future.set_exception(ServiceCallError(self.node.context.refused.message))
+            return future
         with self._lock:
             self._sequence += 1
             attachment = encode_attachment(self._sequence, time.time_ns(), self.gid)

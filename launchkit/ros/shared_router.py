@@ -34,6 +34,7 @@ from launchkit.ros.endpoints import host_port, is_loopback
 from launchkit.ros.port_owner import command_line
 from launchkit.ros.router_access import router_answers
 from launchkit.ros.rundir import locked, router_file
+from launchkit.runtime.containment import not_subreaper
 
 DEFAULT_IDLE_TIMEOUT = 300.0
 START_TIMEOUT = 30.0  # for the background router to listen (a cold Python start under load)
@@ -140,23 +141,24 @@ def start_shared_router(endpoint: str, idle: float | None = None) -> int | None:
         router += ["--idle-timeout", repr(seconds)]
         # sh starts the router in the background and exits at once: the router is then
         # nobody's child. It reports "ready PID" or an error on the pipe, then closes it.
-        starter = subprocess.Popen(
-            ["/bin/sh", "-c", '"$@" </dev/null & exit 0', "sh", *router],
-            stdin=subprocess.DEVNULL,
-            stdout=subprocess.PIPE,
-            stderr=subprocess.STDOUT,
-            start_new_session=True,
-            close_fds=True,
-            cwd="/",
-        )
-        try:
-            report, _ = starter.communicate(timeout=START_TIMEOUT)
-        except subprocess.TimeoutExpired:
-            os.killpg(starter.pid, signal.SIGKILL)  # the router is in the sh's group
-            starter.wait()
-            raise RuntimeLaunchError(
-                f"the shared ROS router at {endpoint} did not start in {START_TIMEOUT:.0f} s"
-            ) from None
+        with not_subreaper():  # the router outlives a launch that starts it
+            starter = subprocess.Popen(
+                ["/bin/sh", "-c", '"$@" </dev/null & exit 0', "sh", *router],
+                stdin=subprocess.DEVNULL,
+                stdout=subprocess.PIPE,
+                stderr=subprocess.STDOUT,
+                start_new_session=True,
+                close_fds=True,
+                cwd="/",
+            )
+            try:  # until the sh has exited, the router's parent to be is decided
+                report, _ = starter.communicate(timeout=START_TIMEOUT)
+            except subprocess.TimeoutExpired:
+                os.killpg(starter.pid, signal.SIGKILL)  # the router is in the sh's group
+                starter.wait()
+                raise RuntimeLaunchError(
+                    f"the shared ROS router at {endpoint} did not start in {START_TIMEOUT:.0f} s"
+                ) from None
         text = report.decode(errors="replace").strip()
         if not text.startswith("ready "):
             raise RuntimeLaunchError(

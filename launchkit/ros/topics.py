@@ -164,6 +164,8 @@ class Publisher(_Entity):
                 f"publisher on '{self.topic_name}' expects {self.type_name}, "
                 f"got {type(msg).__name__}"
             )
+        if self.node.context.refused is not None:
+            return  # linked to another user's router: nothing more leaves (context.py)
         with self._lock:
             self._sequence += 1
             attachment = encode_attachment(self._sequence, time.time_ns(), self.gid)
@@ -253,6 +255,8 @@ class Subscription(_Entity):
     def _on_sample(self, sample: zenoh.Sample) -> None:
         # zenoh's thread: copy out, queue, and have the spinning thread take it; the
         # attachment and reception time only matter to a callback that takes message_info
+        if self.node.context.refused is not None:
+            return  # from another user's router
         item: tuple[bytes, bytes | None, int]
         if self._with_info:
             attachment = sample.attachment

@@ -13,7 +13,7 @@ from typing import Any
 from launchkit.description.ros_link import LoadRequest, Report
 from launchkit.envvars import ROUTER
 from launchkit.errors import LaunchkitError
-from launchkit.ros.context import Context
+from launchkit.ros.context import Context, NotInitializedError
 from launchkit.ros.executor import SingleThreadedExecutor
 from launchkit.ros.node import Node
 from launchkit.ros.params import Parameter, load_params_file
@@ -62,7 +62,16 @@ class RosAdapter:
         return self._node
 
     def _start(self, work: Callable[[], None]) -> None:
-        thread = threading.Thread(target=work, name="launchkit-ros-link", daemon=True)
+        def run() -> None:
+            try:
+                work()
+            except NotInitializedError:
+                if not self._closed.is_set():
+                    raise
+                # the launch ended (a lifecycle node that exited at once, say) while this
+                # worker waited for a service: its context is gone, and so is its purpose
+
+        thread = threading.Thread(target=run, name="launchkit-ros-link", daemon=True)
         self._threads.append(thread)
         thread.start()
 

@@ -1,11 +1,12 @@
 """What a launch leaves behind that must go however it ends: its process groups and its
 private run folder, with the orphan guard behind both for when the launcher is killed.
 
-A child's process group is watched from its start. When its leader exits, the group is
-forgotten if it is empty; otherwise its leftovers (grandchildren) are killed before the process
-is started again, at shutdown, or at the latest when the launcher exits. The run folder (mode
-0700) holds the child-request socket, generated parameter files and whatever the launch's
-processes put in ``$LAUNCHKIT_RUN_TMPDIR``.
+A child's process group is watched from its start, and the child is put in the launch's
+containment (:mod:`launchkit.runtime.containment`), which also holds what leaves the group.
+When its leader exits, the group is forgotten if it is empty; otherwise its leftovers
+(grandchildren) are killed before the process is started again, at shutdown, or at the latest
+when the launcher exits. The run folder (mode 0700) holds the child-request socket, generated
+parameter files and whatever the launch's processes put in ``$LAUNCHKIT_RUN_TMPDIR``.
 """
 
 from __future__ import annotations
@@ -14,6 +15,7 @@ import shutil
 import signal
 import tempfile
 
+from launchkit.runtime.containment import Containment
 from launchkit.runtime.orphan_guard import OrphanGuard
 from launchkit.runtime.process import SupervisedProcess, kill_group
 
@@ -24,6 +26,7 @@ class LaunchCleanup:
     def __init__(self) -> None:
         self._guard = OrphanGuard()
         self._lingering: set[int] = set()
+        self._containment: Containment | None = None
         self.folder: str | None = None
 
     def open_folder(self) -> str:
@@ -33,8 +36,23 @@ class LaunchCleanup:
         return self.folder
 
     def watch(self, pgid: int) -> None:
-        """A new process group (a child, or a ``$(command)``)."""
+        """A new process group (a child, or a ``$(command)``), its leader not yet running its
+        program: into the launch's containment (made with the first child)."""
+        if self._containment is None:
+            self._containment = Containment(self._guard.tell)
+        self._containment.adopt(pgid)
         self._guard.watch(pgid)
+
+    @property
+    def sweeping(self) -> bool:
+        """Whether :meth:`sweep` must be called periodically (no cgroup holds the strays)."""
+        return self._containment is not None and self._containment.sweeping
+
+    def sweep(self, now: float) -> None:
+        """Find the launch's strays among the launcher's children (see
+        :mod:`launchkit.runtime.containment`)."""
+        if self._containment is not None:
+            self._containment.sweep(now)
 
     def forget(self, pgid: int) -> None:
         """A process group that is empty now."""
@@ -69,6 +87,9 @@ class LaunchCleanup:
         for pgid in self._lingering:
             kill_group(pgid, signal.SIGKILL)
         self._lingering.clear()
+        if self._containment is not None:
+            self._containment.kill_all()  # what left its group: a setsid grandchild, a daemon
+            self._containment = None
         if self.folder is not None:
             shutil.rmtree(self.folder, ignore_errors=True)
             self.folder = None

@@ -5,7 +5,8 @@ SIGKILLed. So the launcher starts one tiny ``sh`` in its own session, tells it e
 process group over a pipe (and each group that is gone again, so that a reused id is never
 killed), and kills it on a clean exit. If the launcher dies any other way the pipe closes,
 ``read`` returns, and the watchdog SIGKILLs every group it still knows, grandchildren of
-``sh -c`` included, and removes the folder it was told about (the launcher's private run folder:
+``sh -c`` included, kills the launch's cgroup (:mod:`launchkit.runtime.containment`: what
+left its group too), and removes the folder it was told about (the launcher's private run folder:
 the child-request socket, generated parameter files, the plugin files of its processes).
 
 A child's program does not start before the watchdog knows its group (see
@@ -19,17 +20,25 @@ import os
 import signal
 import subprocess
 
+from launchkit.runtime.containment import own_helpers
+
 # Groups are kept in one string " g1 g2 ... " so that a line "-g" can take one out without a
 # fork: ${gs%% g *} is what comes before it, ${gs#* g } what comes after.
+# A line "=/sys/fs/cgroup/..." names the launch's cgroup ("=" alone: none any more), killed
+# whole with cgroup.kill and removed once empty.
 _SCRIPT = (
-    'trap "" INT TERM HUP QUIT; d=""; gs=" "; '
+    'trap "" INT TERM HUP QUIT; d=""; c=""; gs=" "; '
     'while read -r g; do case "$g" in '
     '/*) d="$g";; '
+    '=*) c="${g#=}";; '
     '-*) g="${g#-}"; case "$gs" in *" $g "*) gs="${gs%% $g *} ${gs#* $g }";; esac;; '
     '*) gs="$gs$g ";; '
     "esac; done; "
+    '[ -z "$c" ] || echo 1 > "$c/cgroup.kill"; '
     'for g in $gs; do kill -9 "-$g" 2>/dev/null; done; '
-    '[ -z "$d" ] || rm -rf "$d"'
+    '[ -z "$d" ] || rm -rf "$d"; '
+    '[ -z "$c" ] || for i in 1 2 3 4 5 6 7 8 9 10; do rmdir "$c" 2>/dev/null && break; '
+    "sleep 0.2; done"
 )
 
 
@@ -48,6 +57,15 @@ class OrphanGuard:
         if self._process is not None:
             self._tell(f"-{pgid}")
 
+    @property
+    def pid(self) -> int | None:
+        """The watchdog's pid, once started."""
+        return None if self._process is None else self._process.pid
+
+    def tell(self, line: str) -> None:
+        """Tell the watchdog one line of its script's language (a cgroup: ``=PATH``)."""
+        self._tell(line)
+
     def remove_on_death(self, folder: str) -> None:
         """The folder (an absolute path) to remove should the launcher die."""
         self._tell(folder)
@@ -62,6 +80,7 @@ class OrphanGuard:
                 start_new_session=True,
                 close_fds=True,
             )
+            own_helpers.add(self._process.pid)
         assert self._process.stdin is not None
         try:
             self._process.stdin.write(f"{line}\n".encode())
@@ -78,6 +97,7 @@ class OrphanGuard:
         except ProcessLookupError:
             pass
         self._process.wait()
+        own_helpers.discard(self._process.pid)
         if self._process.stdin is not None:
             try:
                 self._process.stdin.close()

@@ -26,6 +26,7 @@ from launchkit.description.process_spec import ProcessSpec
 from launchkit.errors import LaunchFileError, LaunchkitError
 from launchkit.runtime.lifecycle import Escalation, Lifecycle, RespawnPolicy, State
 from launchkit.runtime.lines import LineBuffer
+from launchkit.runtime.startup_sigint import holds_sigint, sigint_blocked
 
 #: The most a single read of one stream takes (then the loop looks at everything else).
 READ_CHUNK = 64 * 1024
@@ -215,16 +216,17 @@ class ManagedProcess(ProcessPipes):
             err_r, err_w = os.pipe()
         gate_r, gate_w = os.pipe()
         try:
-            self.popen = subprocess.Popen(
-                ["/bin/sh", "-c", _GATE, *spec.cmd],
-                cwd=spec.cwd or None,
-                env=spec.env,
-                stdin=gate_r,
-                stdout=out_w,
-                stderr=err_w,
-                start_new_session=True,
-                close_fds=True,
-            )
+            with sigint_blocked(holds_sigint(spec.cmd)):  # launchkit's nodes take it once ready
+                self.popen = subprocess.Popen(
+                    ["/bin/sh", "-c", _GATE, *spec.cmd],
+                    cwd=spec.cwd or None,
+                    env=spec.env,
+                    stdin=gate_r,
+                    stdout=out_w,
+                    stderr=err_w,
+                    start_new_session=True,
+                    close_fds=True,
+                )
         except BaseException:
             for fd in {out_r, err_r, gate_w} - {None}:
                 os.close(fd)  # type: ignore[arg-type]

@@ -34,6 +34,7 @@ from launchkit.errors import LaunchkitError
 from launchkit.runtime.announcements import Announcements
 from launchkit.runtime.child_requests import ChildRequests, RequestError
 from launchkit.runtime.cleanup import LaunchCleanup
+from launchkit.runtime.containment import SWEEP_PERIOD
 from launchkit.runtime.hooks import SupervisorHooks
 from launchkit.runtime.launch_events import EventRelay
 from launchkit.runtime.lifecycle import Respawn, SendSignal, State
@@ -220,6 +221,7 @@ class Supervisor:
                 continue
             key.data()
         self._io.poll(self.processes)
+        self._cleanup.sweep(self.clock())
         self._run_due()
         self._relay.drain(self.fail)  # the handlers of what happened; an error shuts down
         self._timers.arm(self.clock())
@@ -251,6 +253,8 @@ class Supervisor:
         timeout = max(0.0, min(deadlines) - self.clock()) if deadlines else None
         if self._io.needs_polling:
             timeout = POLL_INTERVAL if timeout is None else min(timeout, POLL_INTERVAL)
+        if self._cleanup.sweeping:
+            timeout = SWEEP_PERIOD if timeout is None else min(timeout, SWEEP_PERIOD)
         return timeout
 
     def _run_due(self) -> None:

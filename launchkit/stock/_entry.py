@@ -19,6 +19,7 @@ from typing import Any, NoReturn
 import launchkit.ros as ros
 from launchkit._exit import exit_promptly
 from launchkit.errors import LaunchkitError
+from launchkit.runtime.startup_sigint import release_sigint
 
 #: Seconds the ROS layer's shutdown may take before the node exits regardless.
 SHUTDOWN_BOUND = 2.0
@@ -28,9 +29,11 @@ def run(main: Callable[[list[str]], int], program: str) -> NoReturn:
     """Run ``main(sys.argv)``; report a launchkit error as ``program: error: ...``, no traceback.
 
     Then exit promptly (see :mod:`launchkit._exit`) with ``main``'s status, the error's (2 for
-    a user mistake), or 0 after Ctrl-C.
+    a user mistake), or 0 after Ctrl-C, also one that came while the node's modules were
+    imported (:mod:`launchkit.runtime.startup_sigint`).
     """
     try:
+        release_sigint()  # a Ctrl-C held while the node's modules were imported lands here
         status = main(sys.argv)
     except LaunchkitError as exc:
         print(f"{program}: {exc.format()}", file=sys.stderr, flush=True)

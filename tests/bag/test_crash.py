@@ -3,8 +3,11 @@ with every message up to the last flush; an intact bag reindexes to the metadata
 
 from __future__ import annotations
 
+import resource
 import sqlite3
 import struct
+import subprocess
+import sys
 from collections.abc import Callable
 from pathlib import Path
 
@@ -122,3 +125,43 @@ def test_sigterm_closes_the_bag_as_ctrl_c_does(router: str, tmp_path: Path) -> N
     assert "Recording stopped" in recorder.output
     with Reader(bag) as reader:
         assert [c.topic for c in reader.connections] == ["/count"]
+
+
+def _file_size_limit(limit: int) -> Callable[[], None]:
+    """A child's set-up capping the size of any file it writes at ``limit`` bytes: past it,
+    writes fail as on a full disk (EFBIG; Python ignores SIGXFSZ). Unlike a small tmpfs, it
+    needs no privileges."""
+
+    def cap() -> None:
+        resource.setrlimit(resource.RLIMIT_FSIZE, (limit, limit))
+
+    return cap
+
+
+@pytest.mark.parametrize("compressed", [False, True])
+def test_reindex_on_a_full_disk_fails_cleanly_and_loses_nothing(
+    tmp_path: Path, compressed: bool
+) -> None:
+    bag = tmp_path / "bag"
+    options = WriterOptions(compression_mode="file") if compressed else WriterOptions()
+    write_bag(bag, options, count=300)  # ~300 KB of messages
+    (bag / "metadata.yaml").unlink()
+    (file,) = sorted(bag.iterdir())
+    if not compressed:  # the file a killed recorder was writing: it needs a repair
+        file.write_bytes(file.read_bytes()[:-5000])
+    before = {p.name: p.read_bytes() for p in bag.iterdir()}
+    full = subprocess.run(
+        [sys.executable, "-m", "launchkit", "bag", "reindex", str(bag)],
+        capture_output=True,
+        text=True,
+        timeout=60,
+        preexec_fn=_file_size_limit(4096),
+    )
+    assert full.returncode == 1, full.stdout + full.stderr
+    assert f"error: {bag}: cannot reindex: File too large" in full.stderr
+    assert "Traceback" not in full.stderr + full.stdout
+    assert {p.name: p.read_bytes() for p in bag.iterdir()} == before  # nothing half-written
+    again = run_bag("reindex", str(bag))
+    assert again.returncode == 0, again.stderr
+    with Reader(bag) as reader:
+        assert reader.message_count > 250

@@ -3,6 +3,7 @@ expression can run long or grow large (issue #17, point 5; the time/size half of
 
 from __future__ import annotations
 
+import signal
 import time
 from pathlib import Path
 
@@ -11,10 +12,12 @@ import pytest
 from launchkit.description.substitutions.sandbox import (
     BUILTINS,
     STR_METHODS,
+    LimitError,
     Limits,
     SandboxError,
     evaluate,
 )
+from launchkit.description.substitutions.sandbox_process import WALL_FACTOR, Evaluator
 from launchkit.errors import LaunchkitError
 from tests.conftest import EvaluateXml
 from tests.engine.launcher import run_launchkit
@@ -114,6 +117,70 @@ def test_the_time_limit_is_checked_between_steps() -> None:
             "sorted(list(range(50000))) " + "and sorted(list(range(50000))) " * 400,
             limits=Limits(seconds=0.05),
         )
+
+
+SLOW_CALL = "len(sorted([(1<<9990)]*100000, key=str))"  # one C call: 22 s of CPU, 318 MB
+
+
+def test_one_long_call_stops_at_the_time_limit() -> None:
+    evaluator = Evaluator()
+    try:
+        assert evaluator.evaluate("round(pi, 2)", ["math"], Limits()) == "3.14"
+        started = time.monotonic()
+        with pytest.raises(LimitError, match=r"longer than 1 s \(stopped after"):
+            evaluator.evaluate(SLOW_CALL, ["math"], Limits())
+        elapsed = time.monotonic() - started
+        assert elapsed < 1 * WALL_FACTOR + 1, elapsed
+        assert evaluator.evaluate("2 * 21", [], Limits()) == "42"  # a new evaluator process
+    finally:
+        evaluator.close()
+
+
+class _Alarm(Exception):
+    pass
+
+
+def test_an_evaluation_interrupted_leaves_no_answer_behind() -> None:
+    # A signal (Ctrl-C) while the evaluator works: its late answer must not become the next
+    # expression's.
+    def ring(_signum: int, _frame: object) -> None:
+        raise _Alarm
+
+    evaluator = Evaluator()
+    previous = signal.signal(signal.SIGALRM, ring)
+    try:
+        assert evaluator.evaluate("1", [], Limits()) == "1"  # started before the alarm
+        signal.setitimer(signal.ITIMER_REAL, 0.2)
+        with pytest.raises(_Alarm):
+            evaluator.evaluate(SLOW_CALL, [], Limits(seconds=60))
+        assert evaluator.evaluate("2 * 21", [], Limits()) == "42"
+    finally:
+        signal.setitimer(signal.ITIMER_REAL, 0)
+        signal.signal(signal.SIGALRM, previous)
+        evaluator.close()
+
+
+def test_memory_is_bounded_inside_one_call() -> None:
+    evaluator = Evaluator(memory=64 * 2**20)
+    try:
+        with pytest.raises(LimitError, match="64 MiB"):
+            evaluator.evaluate(SLOW_CALL, ["math"], Limits(seconds=60))
+        assert evaluator.evaluate("'ok'", [], Limits()) == "ok"
+    finally:
+        evaluator.close()
+
+
+def test_a_runaway_call_fails_the_check_naming_the_file_line_and_limit(tmp_path: Path) -> None:
+    path = tmp_path / "slow.launch.xml"
+    slow = SLOW_CALL.replace("<", "&lt;")
+    path.write_text(f"<launch>\n  <log message=\"$(eval '{slow}')\"/>\n</launch>\n")
+    started = time.monotonic()
+    result = run_launchkit("check", str(path), cwd=tmp_path)
+    assert time.monotonic() - started < 30  # it used to run 84 s and print ok
+    assert result.returncode == 2, result.stdout + result.stderr
+    assert f"{path}:2:" in result.stderr and "took longer than 1 s" in result.stderr
+    assert "1 s of CPU time, 100,000 characters or items" in result.stderr
+    assert "Traceback" not in result.stderr + result.stdout
 
 
 def test_modules_argument_names_what_is_visible(evaluate_xml: EvaluateXml) -> None:

@@ -79,6 +79,28 @@ def generate_launch_description():
     ])
 """
 
+EARLY_EXIT_LAUNCH = """
+import sys
+
+import launch
+import lifecycle_msgs.msg
+from launch import LaunchDescription
+from launch.actions import EmitEvent
+from launch_ros.actions import LifecycleNode
+from launch_ros.events.lifecycle import ChangeState
+
+
+def generate_launch_description():
+    node = LifecycleNode(name='early', namespace='', executable=sys.executable,
+                         arguments=['-c', 'import sys; sys.exit(1)'], output='screen')
+    return LaunchDescription([
+        node,
+        EmitEvent(event=ChangeState(
+            lifecycle_node_matcher=launch.events.matches_action(node),
+            transition_id=lifecycle_msgs.msg.Transition.TRANSITION_CONFIGURE)),
+    ])
+"""
+
 COMPOSITION_LAUNCH = """
 from launch import LaunchDescription
 from launch_ros.actions import ComposableNodeContainer, LoadComposableNodes
@@ -144,6 +166,17 @@ def test_lifecycle_nodes_follow_launch_events(
     at("'second' is active")
     launcher.signal(2)
     assert launcher.finish() == 0
+
+
+def test_a_lifecycle_node_that_exits_at_once_ends_the_launch_quietly(
+    start: Callable[..., Launcher],
+) -> None:
+    # The transition's worker waited for the node's service when the launch ended: its
+    # context was shut down under it (NotInitializedError in thread launchkit-ros-link).
+    launcher = start(EARLY_EXIT_LAUNCH)
+    assert launcher.finish() == 0
+    assert "process has died" in launcher.text
+    assert "Traceback" not in launcher.text and "NotInitializedError" not in launcher.text
 
 
 def test_components_load_into_a_container(start: Callable[..., Launcher]) -> None:

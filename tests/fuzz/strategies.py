@@ -158,3 +158,120 @@ def params_file(draw: st.DrawFn) -> bytes:
         )
     )
     return draw(spliced(yaml.safe_dump(sections, allow_unicode=True).encode()))
+
+
+#: Classes of the Python launch API, with the keyword arguments ROS documents for each and
+#: how many positional ones they take first (none of them runs a program during a check).
+PYTHON_API: dict[str, tuple[int, tuple[str, ...]]] = {
+    "launch.actions.DeclareLaunchArgument": (1, ("default_value", "description", "choices")),
+    "launch.actions.LogInfo": (0, ("msg",)),
+    "launch.actions.GroupAction": (1, ("scoped", "forwarding", "launch_configurations")),
+    "launch.actions.TimerAction": (0, ("period", "actions", "cancel_on_shutdown")),
+    "launch.actions.SetLaunchConfiguration": (2, ()),
+    "launch.actions.UnsetLaunchConfiguration": (1, ()),
+    "launch.actions.SetEnvironmentVariable": (2, ()),
+    "launch.actions.AppendEnvironmentVariable": (2, ("prepend", "separator")),
+    "launch.actions.ExecuteProcess": (0, ("cmd", "name", "cwd", "env", "additional_env", "output",
+                                          "shell", "respawn", "respawn_delay", "sigterm_timeout")),
+    "launch.actions.IncludeLaunchDescription": (1, ("launch_arguments",)),
+    "launch.actions.RegisterEventHandler": (1, ()),
+    "launch.actions.OpaqueFunction": (0, ("function", "args", "kwargs")),
+    "launch.actions.Shutdown": (0, ("reason",)),
+    "launch.actions.PushLaunchConfigurations": (0, ()),
+    "launch.actions.PopLaunchConfigurations": (0, ()),
+    "launch.event_handlers.OnProcessExit": (0, ("target_action", "on_exit")),
+    "launch.event_handlers.OnProcessStart": (0, ("target_action", "on_start")),
+    "launch.launch_description_sources.PythonLaunchDescriptionSource": (1, ()),
+    "launch.conditions.IfCondition": (1, ()),
+    "launch.conditions.UnlessCondition": (1, ()),
+    "launch.conditions.LaunchConfigurationEquals": (2, ()),
+    "launch.substitutions.LaunchConfiguration": (1, ("default",)),
+    "launch.substitutions.EnvironmentVariable": (1, ("default_value",)),
+    "launch.substitutions.PythonExpression": (1, ()),
+    "launch.substitutions.PathJoinSubstitution": (1, ()),
+    "launch.substitutions.TextSubstitution": (0, ("text",)),
+    "launch.substitutions.EqualsSubstitution": (2, ()),
+    "launch.substitutions.NotSubstitution": (1, ()),
+    "launch_ros.actions.Node": (0, ("package", "executable", "name", "namespace", "parameters",
+                                    "remappings", "arguments", "ros_arguments", "output",
+                                    "respawn", "exec_name")),
+    "launch_ros.actions.PushRosNamespace": (1, ()),
+    "launch_ros.actions.SetParameter": (0, ("name", "value")),
+    "launch_ros.actions.SetRemap": (0, ("src", "dst")),
+    "launch_ros.actions.SetUseSimTime": (1, ()),
+    "launch_ros.substitutions.FindPackageShare": (1, ()),
+    "launch_ros.parameter_descriptions.ParameterValue": (1, ("value_type",)),
+}  # fmt: skip
+#: Keyword arguments most actions take.
+COMMON_KEYWORDS = ("condition",)
+#: Values of every type a launch file might wrongly pass.
+PYTHON_VALUES = [
+    "'x'", "''", "'a b'", "'$(var x)'", "'true'", "['x']", "[['x']]", "[1, None]", "1", "-1",
+    "2.5", "float('nan')", "True", "None", "{'k': 'v'}", "{'k': ['v']}", "{1: 2}", "('a', 'b')",
+    "[('a', 'b')]", "b'x'", "object()", "range(3)", "lambda *a, **k: None", "print", "...",
+    "10**100", "'\\x00'", "LaunchDescription()", "[LaunchDescription([])]",
+]  # fmt: skip
+
+
+def python_call(depth: int = 0) -> st.SearchStrategy[str]:
+    """One call of the Python launch API whose arguments are anything, calls included."""
+    value = st.sampled_from(PYTHON_VALUES)
+    if depth < 2:
+        inner = st.deferred(lambda: python_call(depth + 1))
+        value = st.one_of(
+            value, inner, st.lists(inner, max_size=2).map(lambda c: f"[{', '.join(c)}]")
+        )
+
+    @st.composite
+    def call(draw: st.DrawFn) -> str:
+        name = draw(st.sampled_from(sorted(PYTHON_API)))
+        positional, keywords = PYTHON_API[name]
+        args = draw(st.lists(value, min_size=0, max_size=positional + 1))
+        chosen = draw(st.lists(st.sampled_from((*keywords, *COMMON_KEYWORDS)), unique=True,
+                               max_size=3))  # fmt: skip
+        kwargs = [f"{key}={draw(value)}" for key in chosen]
+        return f"{name}({', '.join([*args, *kwargs])})"
+
+    return call()
+
+
+@st.composite
+def python_api_misuse(draw: st.DrawFn) -> bytes:
+    """A Python launch file whose actions get arguments of any type, as a user might pass
+    them by mistake (a list as an argument name, a string as a condition, ...)."""
+    calls = draw(st.lists(python_call(), min_size=1, max_size=4))
+    body = "".join(f"        {call},\n" for call in calls)
+    text = (
+        "import launch, launch.actions, launch.conditions, launch.event_handlers\n"
+        "import launch.launch_description_sources, launch.substitutions\n"
+        "import launch_ros.actions, launch_ros.substitutions, launch_ros.parameter_descriptions\n"
+        "from launch import LaunchDescription\n\n\n"
+        "def generate_launch_description():\n"
+        f"    return LaunchDescription([\n{body}    ])\n"
+    )
+    return text.encode()
+
+
+#: Explicit YAML tags, valid and not, for scalars and collections.
+YAML_TAGS = [
+    "!!timestamp x", "!!timestamp 2001-12-14", "!!bool maybe", "!!bool yes", "!!int ''",
+    "!!int 0x", "!!int 12", "!!float abc", "!!float .inf", "!!null x", "!!str 1", "!!binary '@@'",
+    "!!binary aGk=", "!!python/name:os.system x", "!!python/object/apply:os.system [id]",
+    "!!set {a: 1}", "!!omap [a: 1]", "!!pairs [a: 1]", "!!map [1]", "!!seq {a: 1}", "!foo x",
+    "!<tag:yaml.org,2002:int> x", "!!merge x", "!!str [1]", "!!int [1]", "! x",
+]  # fmt: skip
+
+
+@st.composite
+def yaml_with_tags(draw: st.DrawFn, text: bytes) -> bytes:
+    """``text`` (YAML) with explicit tags put in place of some of its values."""
+    lines = text.split(b"\n")
+    for _ in range(draw(st.integers(1, 3))):
+        at = draw(st.integers(0, max(0, len(lines) - 1)))
+        line = lines[at]
+        if b": " in line:
+            key = line.split(b": ", 1)[0]
+            lines[at] = key + b": " + draw(st.sampled_from(YAML_TAGS)).encode()
+        else:
+            lines.insert(at, b"- " + draw(st.sampled_from(YAML_TAGS)).encode())
+    return b"\n".join(lines)

@@ -37,6 +37,21 @@ def test_mutated_python_launch_files(data: bytes) -> None:
     check_file("fuzz.launch.py", data)
 
 
+@given(S.python_api_misuse())
+def test_python_launch_api_misuse(data: bytes) -> None:
+    check_file("fuzz.launch.py", data)
+
+
+@given(st.one_of(S.yaml_launch_file(), st.sampled_from(YAML_SEEDS)).flatmap(S.yaml_with_tags))
+def test_yaml_launch_files_with_explicit_tags(data: bytes) -> None:
+    check_file("fuzz.launch.yaml", data)
+
+
 @given(st.one_of(S.params_file(), S.mutant_of(PARAMS_SEEDS)))
 def test_params_files(data: bytes) -> None:
+    load_params(data)
+
+
+@given(st.one_of(S.params_file(), st.sampled_from(PARAMS_SEEDS)).flatmap(S.yaml_with_tags))
+def test_params_files_with_explicit_tags(data: bytes) -> None:
     load_params(data)

@@ -29,13 +29,16 @@ def processes_with(token: str) -> list[int]:
     return found
 
 
-def launchkit(*args: str | Path, cwd: Path | None = None) -> subprocess.CompletedProcess[str]:
-    """Run the ``launchkit`` command line to completion, output captured; fail if anything it
-    started is still running afterwards."""
+def launchkit(
+    *args: str | Path, cwd: Path | None = None, python: bool = False
+) -> subprocess.CompletedProcess[str]:
+    """Run the ``launchkit`` command line (``python``: the interpreter with ``args``, a stock
+    node's module say) to completion, output captured; fail if anything it started is still
+    running afterwards."""
     token = f"LAUNCHKIT_HOSTILE_TEST={uuid.uuid4().hex}"
     name, value = token.split("=")
     result = subprocess.run(
-        [sys.executable, "-m", "launchkit", *map(str, args)],
+        [sys.executable, *([] if python else ["-m", "launchkit"]), *map(str, args)],
         cwd=cwd or CORPUS,
         capture_output=True,
         text=True,

@@ -12,6 +12,7 @@ import time
 from pathlib import Path
 
 import pytest
+from certs import Authority
 from netns import Host, Hosts, Proc
 
 from launchkit.remote.keys import load_key
@@ -178,3 +179,39 @@ def test_a_cut_link_stops_the_remote_processes_after_the_grace_period(
     assert any("lost agent hostb for 2 s" in seen for seen in run.seen[-15:]), run.seen[-15:]
     hosts.a.set_link(True)
     assert run.stop() == 0
+
+
+def test_only_the_launchers_an_agent_names_reach_it(
+    hosts: Hosts, setup: dict[str, str], tmp_path: Path
+) -> None:
+    ca = Authority("robot-ca")
+    a_certs = ca.host_folder(tmp_path / "a", "host-a", hosts.a.address)
+    b_certs = ca.host_folder(tmp_path / "b", "host-b", hosts.b.address)
+    link = f"tls/{hosts.b.address}:7448"
+
+    def agent_admitting(names: str) -> Proc:
+        proc = hosts.b.launchkit(
+            "agent", "--name", "hostb", "--listen", link, "--mtls", str(b_certs),
+            "--launchers", names, env={**setup, "HOSTMARK": "host-b"},
+        )  # fmt: skip
+        admitted = names.replace(",", ", ")
+        proc.expect(f"access control: only this host and {admitted} may use this router")
+        proc.expect("agent hostb ready")
+        return proc
+
+    def launch(*env: tuple[str, str]) -> Proc:
+        return hosts.a.launchkit(
+            "run", setup["LAUNCH"], "--connect", link, "--mtls", str(a_certs),
+            env={**setup, "HOSTMARK": "host-a", **dict(env)},
+        )  # fmt: skip
+
+    shut_out = agent_admitting("host-c")  # host A has the key and a certificate of the CA
+    run = launch(("LAUNCHKIT_AGENT_TIMEOUT", "3"))
+    assert "no agent hostb on the graph after 3 s" in run.expect("could not start process")
+    assert run.proc.wait(timeout=30) == 1
+    assert shut_out.stop() == 0
+    agent_admitting("host-a,host-c")
+    run = launch()
+    run.expect("[sleeper-2] remote-hello from host-b")
+    assert run.stop() == 0
+    assert remote_leftovers(hosts.b) == []

@@ -24,33 +24,56 @@ from launchkit.remote import remote_process
 from launchkit.remote.agent_processes import build_spec
 from launchkit.remote.keys import AgentKeyError, load_key
 from launchkit.remote.launch import RemoteLaunch
-from launchkit.remote.protocol import (
-    NonceCheck,
+from launchkit.remote.protocol import encode_spec
+from launchkit.remote.remote_process import LOST, RemoteProcess
+from launchkit.remote.sealing import (
+    EVENT,
+    REPLY,
+    REQUEST,
+    WINDOW,
     ProtocolError,
-    encode_spec,
-    request,
+    ReplayGuard,
+    refusal_of,
     seal,
     unseal,
+    unsealed_refusal,
 )
-from launchkit.remote.remote_process import LOST, RemoteProcess
 
 KEY = b"k" * 64
 
 
-def test_messages_are_sealed_with_the_key() -> None:
-    message = request("start", launch="l1", label="talker-1")
-    assert unseal(KEY, seal(KEY, message)) == message
+def test_messages_are_sealed_with_the_key_for_one_direction() -> None:
+    message = {"op": "start", "launch": "l1", "seq": 1, "label": "talker-1"}
+    opened = unseal(KEY, REQUEST, seal(KEY, REQUEST, message))
+    assert opened == {**message, "v": 1, "dir": REQUEST}
     with pytest.raises(ProtocolError, match="not sealed with this agent key"):
-        unseal(b"x" * 64, seal(KEY, message))
-    tampered = seal(KEY, message).replace(b"talker-1", b"talker-2")
+        unseal(b"x" * 64, REQUEST, seal(KEY, REQUEST, message))
+    tampered = seal(KEY, REQUEST, message).replace(b"talker-1", b"talker-2")
     with pytest.raises(ProtocolError):
-        unseal(KEY, tampered)
-    nonces = NonceCheck()
-    nonces.check(message)
-    with pytest.raises(ProtocolError, match="replayed"):
-        nonces.check(message)
-    with pytest.raises(ProtocolError, match="off this host's clock"):
-        nonces.check({**request("start"), "time": time.time() - 3600})
+        unseal(KEY, REQUEST, tampered)
+    for other in (REPLY, EVENT):  # a sealed reply or event is never a request
+        with pytest.raises(ProtocolError, match="where a 'request' belongs"):
+            unseal(KEY, REQUEST, seal(KEY, other, message))
+    refusal = unsealed_refusal("not sealed with this agent key")
+    assert refusal_of(refusal) == "not sealed with this agent key"
+    with pytest.raises(ProtocolError, match="malformed"):
+        unseal(KEY, REPLY, refusal)
+
+
+def test_an_agent_executes_each_request_once_and_forgets_nothing_recent() -> None:
+    guard = ReplayGuard()
+    assert guard.answer_of("l1", 5, now=0.0) is None
+    guard.remember("l1", 5, {"ok": True, "pid": 7}, now=0.0)
+    assert guard.answer_of("l1", 5, now=1.0) == {"ok": True, "pid": 7}  # a copy: same answer
+    assert guard.answer_of("l1", 3, now=1.0) is None  # overtaken on the way: still new
+    assert guard.answer_of("l2", 5, now=1.0) is None  # another launch counts on its own
+    guard.remember("l1", 5 + WINDOW, {"ok": True}, now=1.0)
+    with pytest.raises(ProtocolError, match="too old"):
+        guard.answer_of("l1", 5, now=2.0)
+    with pytest.raises(ProtocolError, match="without its number"):
+        guard.answer_of("l1", 0, now=2.0)
+    with pytest.raises(ProtocolError, match="ended here"):
+        guard.answer_of("l1", 6 + WINDOW, now=10_000.0)  # silent for long: the launch ended
 
 
 def test_the_agent_key_is_made_private_and_checked(tmp_path: Path) -> None:
@@ -138,11 +161,13 @@ class FakeAgents:
         self.starts += 1
         incarnation = process.incarnation
 
+        process.instance = "run-1"
+
         def run() -> None:
-            process.deliver(incarnation, {"kind": "line", "stream": "stdout", "text": "hello"})
-            process.deliver(incarnation, {"kind": "line", "stream": "stderr", "text": "warn"})
+            say(process, incarnation, {"kind": "line", "stream": "stdout", "text": "hello"})
+            say(process, incarnation, {"kind": "line", "stream": "stderr", "text": "warn"})
             if self.quits and self.may_quit.wait(10):
-                process.deliver(incarnation, {"kind": "exit", "code": 3})
+                say(process, incarnation, {"kind": "exit", "code": 3})
 
         threading.Thread(target=run).start()
         return 4000 + self.starts
@@ -151,7 +176,15 @@ class FakeAgents:
         self.signals.append(signum)
         if signum == signal.SIGKILL and self.ignore_kill:
             return
-        process.deliver(process.incarnation, {"kind": "exit", "code": -signum})
+        say(process, process.incarnation, {"kind": "exit", "code": -signum})
+
+
+_SEQ = iter(range(1, 1_000_000))
+
+
+def say(process: RemoteProcess, incarnation: int, event: dict[str, Any]) -> None:
+    """Deliver ``event`` as the agent's run ``run-1`` would, numbered."""
+    process.deliver("run-1", incarnation, {**event, "seq": next(_SEQ)})
 
 
 def _drain(process: RemoteProcess, deadline: float = 10.0) -> list[str]:
@@ -174,7 +207,7 @@ def test_a_remote_process_turns_events_into_lines_and_an_exit() -> None:
     assert process.pid == 4001 and process.pidfd is not None
     assert sorted(_drain(process)) == ["hello", "warn"]
     assert process.poll() == 3 and os.read(process.pidfd, 1) == b"x"
-    process.deliver(1, {"kind": "line", "stream": "stdout", "text": "late"})  # ignored
+    say(process, 1, {"kind": "line", "stream": "stdout", "text": "late"})  # ignored
     process.close_pidfd()
     agents.may_quit.clear()  # the new incarnation runs until the test lets it quit
     process.spawn()  # a respawn: a new incarnation, new pipes
@@ -182,6 +215,27 @@ def test_a_remote_process_turns_events_into_lines_and_an_exit() -> None:
     agents.may_quit.set()
     _drain(process)
     assert process.poll() == 3
+
+
+def test_a_remote_process_takes_only_its_agent_run_s_next_events() -> None:
+    class SilentAgents(FakeAgents):
+        def start(self, process: RemoteProcess) -> int:
+            process.instance = "run-1"
+            return 4000
+
+    process = RemoteProcess(SilentAgents(), ProcessSpec("w", ["w"], {}, machine="h"), "w-1", 1)
+    process.spawn()
+    exit_event = {"kind": "exit", "code": 3, "seq": 10_000_000}
+    process.deliver("another-run", 1, exit_event)  # sealed by an earlier run of the agent
+    process.deliver("run-1", 2, exit_event)  # for another incarnation
+    assert process.poll() is None
+    process.deliver("run-1", 1, {"kind": "line", "stream": "stdout", "text": "x", "seq": 1})
+    process.deliver("run-1", 1, {**exit_event, "seq": 1})  # a copy of an old number
+    assert process.poll() is None
+    process.deliver("run-1", 1, {**exit_event, "seq": 2})
+    assert process.poll() == 3
+    process.close_pidfd()
+    _drain(process)
 
 
 def test_an_unconfirmed_kill_gives_the_process_up(monkeypatch: pytest.MonkeyPatch) -> None:

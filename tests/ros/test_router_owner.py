@@ -14,7 +14,7 @@ from collections.abc import Iterator
 from pathlib import Path
 
 import pytest
-from ros_helpers import demo_package
+from ros_helpers import NODES_DIR, Child, demo_package, stderr_line
 
 from launchkit.ros.context import Context
 from launchkit.ros.port_owner import _decode_address, find_listener
@@ -28,6 +28,21 @@ _LISTEN_AS_NOBODY = """
 import os, socket, sys, time
 os.setgroups([]); os.setgid({uid}); os.setuid({uid})
 s = socket.socket(); s.bind(("127.0.0.1", {port})); s.listen()
+print("listening", flush=True)
+sys.stdin.read()
+"""
+
+
+_ROUTER_AS_NOBODY = """
+import json, os, sys, threading, time, encodings.idna
+import zenoh
+os.setgroups([]); os.setgid({uid}); os.setuid({uid})
+config = zenoh.Config()
+config.insert_json5("mode", '"router"')
+config.insert_json5("listen/endpoints", json.dumps(["tcp/127.0.0.1:{port}"]))
+config.insert_json5("scouting/multicast/enabled", "false")
+session = zenoh.open(config)
+heard = session.declare_subscriber("**", lambda sample: print("heard", sample.key_expr, flush=True))
 print("listening", flush=True)
 sys.stdin.read()
 """
@@ -120,3 +135,44 @@ def test_a_trusted_users_router_is_joined(
     monkeypatch.setenv("LAUNCHKIT_ROUTER_TRUSTED_USERS", "someone-unknown, nobody")
     handle = start_router(foreign_endpoint)
     assert not handle.hosted
+
+
+def test_nodes_and_commands_refuse_another_users_router_after_losing_theirs() -> None:
+    if os.geteuid() != 0:
+        pytest.skip("needs root, to start a router as another user")
+    port = free_loopback_port()
+    endpoint = f"tcp/127.0.0.1:{port}"
+    ours = start_router(endpoint)
+    env = {"LAUNCHKIT_ROUTER": endpoint, "LAUNCHKIT_ROUTER_AUTOSTART": "0"}
+    talker = Child([str(NODES_DIR / "talker.py")], env)
+    command = [
+        "-m", "launchkit", "topic", "pub", "/chatter", "std_msgs/msg/String", "{data: pub}",
+        "-r", "50", "--router", endpoint,
+    ]  # fmt: skip
+    publisher = Child(command, env)
+    foreign: subprocess.Popen[str] | None = None
+    try:
+        talker.expect("talker ready")
+        publisher.expect("publishing")
+        ours.close()  # the owner's router dies; another user's takes the port
+        foreign = subprocess.Popen(
+            [sys.executable, "-c", _ROUTER_AS_NOBODY.format(uid=NOBODY, port=port)],
+            stdin=subprocess.PIPE,
+            stdout=subprocess.PIPE,
+            text=True,
+        )
+        assert foreign.stdout is not None and foreign.stdout.readline() == "listening\n"
+        for child in (talker, publisher):
+            assert child.proc.wait(timeout=30) == 1, "it kept talking through the other router"
+            line = stderr_line(child, "after losing its router", timeout=5)
+            assert f"the ROS router port {endpoint} is held by another user (nobody" in line
+        foreign.kill()
+        heard = foreign.communicate()[0]
+        assert "heard" not in heard, f"the other user's router heard: {heard[:300]}"
+    finally:
+        for child in (talker, publisher):
+            child.stop()
+        if foreign is not None:
+            foreign.kill()
+            foreign.communicate()
+        ours.close()

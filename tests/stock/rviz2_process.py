@@ -58,11 +58,11 @@ class Rviz2:
 
 
 @contextmanager
-def running_rviz2(router: str, *args: str) -> Iterator[Rviz2]:
-    """rviz2 with ``args`` on a free port, serving once this yields; stopped (its whole process
-    group) afterwards."""
+def running_rviz2(router: str, *args: str, env: dict[str, str] | None = None) -> Iterator[Rviz2]:
+    """rviz2 with ``args`` (and ``env`` added to the environment) on a free port, serving once
+    this yields; stopped (its whole process group) afterwards."""
     port = free_loopback_port()
-    env = {**os.environ, "LAUNCHKIT_ROUTER": router}
+    env = {**os.environ, "LAUNCHKIT_ROUTER": router, **(env or {})}
     env.pop("LAUNCHKIT_SUPERVISOR_SOCKET", None)  # print the viewer line itself
     proc = subprocess.Popen(
         [sys.executable, "-m", "launchkit.stock.rviz2.node", "--port", str(port), *args],

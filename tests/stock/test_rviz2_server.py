@@ -9,6 +9,7 @@ its own topic names.
 from __future__ import annotations
 
 import asyncio
+import http.client
 import json
 import time
 from collections.abc import Iterator
@@ -42,9 +43,28 @@ def router_endpoint() -> Iterator[str]:
 
 
 @pytest.fixture(scope="module")
-def rviz2(router_endpoint: str) -> Iterator[Rviz2]:
-    """rviz2 serving on a free port, allowing one extra origin."""
-    with running_rviz2(router_endpoint, "-d", str(CONFIG), "--allow-origin", ALLOWED) as rviz2:
+def assets(tmp_path_factory: pytest.TempPathFactory) -> Path:
+    """A package ``meshpkg`` (an ``AMENT_PREFIX_PATH`` prefix) with a mesh, a folder given to
+    rviz2 with ``--asset-folder`` with another, and a private folder with a third; each mesh
+    is ``meshes/part.stl``."""
+    root = tmp_path_factory.mktemp("assets")
+    marker = root / "prefix" / "share" / "ament_index" / "resource_index" / "packages" / "meshpkg"
+    marker.parent.mkdir(parents=True)
+    marker.write_text("")
+    for folder in (root / "prefix" / "share" / "meshpkg", root / "given", root / "private"):
+        (folder / "meshes").mkdir(parents=True)
+        (folder / "meshes" / "part.stl").write_bytes(f"solid {folder.name}\n".encode())
+    return root
+
+
+@pytest.fixture(scope="module")
+def rviz2(router_endpoint: str, assets: Path) -> Iterator[Rviz2]:
+    """rviz2 serving on a free port, allowing one extra origin and one asset folder."""
+    with running_rviz2(
+        router_endpoint,
+        "-d", str(CONFIG), "--allow-origin", ALLOWED, "--asset-folder", str(assets / "given"),
+        env={"AMENT_PREFIX_PATH": str(assets / "prefix")},
+    ) as rviz2:  # fmt: skip
         yield rviz2
 
 
@@ -260,12 +280,10 @@ def test_client_publish_drives_the_robot(rviz2: Rviz2, probe: Any, encoding: str
 
 
 def test_meshes_the_description_names_are_served_and_nothing_else(
-    rviz2: Rviz2, probe: Any, tmp_path: Path
+    rviz2: Rviz2, probe: Any, assets: Path
 ) -> None:
-    mesh = tmp_path / "meshes" / "part.stl"
-    mesh.parent.mkdir()
-    mesh.write_bytes(b"solid part\nendsolid part\n")
-    (tmp_path / "secret.stl").write_bytes(b"not named by the robot")
+    mesh = assets / "given" / "meshes" / "part.stl"
+    (mesh.parent / "secret.stl").write_bytes(b"not named by the robot")
     urdf = (
         f"<robot name='meshy'><link name='base'><visual><geometry>"
         f"<mesh filename='file://{mesh}'/></geometry></visual></link></robot>"
@@ -280,7 +298,8 @@ def test_meshes_the_description_names_are_served_and_nothing_else(
             await client.wait_for(f"{topic} advertised", lambda: topic in client.channels)
             await client.subscribe([topic])
             await client.wait_for("the description", lambda: topic in client.received)
-            for request_id, uri in ((1, f"file://{mesh}"), (2, f"file://{tmp_path}/secret.stl")):
+            secret = f"file://{mesh.parent}/secret.stl"
+            for request_id, uri in ((1, f"file://{mesh}"), (2, secret)):
                 await client.send_json({"op": "fetchAsset", "uri": uri, "requestId": request_id})
             await client.wait_for("two asset responses", lambda: len(client.binary) >= 2)
             return client
@@ -289,11 +308,67 @@ def test_meshes_the_description_names_are_served_and_nothing_else(
     status, headers, body = rviz2.get(asset)
     assert (status, body) == (200, mesh.read_bytes())
     assert headers["Content-Type"] == "model/stl"
-    assert rviz2.get(f"/asset/file{tmp_path}/secret.stl")[0] == 404
+    assert rviz2.get(f"/asset/file{mesh.parent}/secret.stl")[0] == 404
     assert rviz2.get("/asset/file/etc/passwd")[0] == 404
     found, refused = sorted(client.binary, key=lambda b: int.from_bytes(b[1:5], "little"))
     assert found[5] == 0 and found.endswith(mesh.read_bytes())
     assert refused[5] == 1 and b"not a file the robot description names" in refused
+
+
+def test_a_description_from_the_network_reaches_only_trusted_folders(
+    rviz2: Rviz2, probe: Any, assets: Path
+) -> None:
+    # Any graph member may publish a description: naming a file makes it reachable only inside
+    # the package share folders and the folders rviz2 was given.
+    share = assets / "prefix" / "share" / "meshpkg" / "meshes" / "part.stl"
+    private = assets / "private" / "meshes" / "part.stl"
+    escape = "package://meshpkg/../../../private/meshes/part.stl"
+    names = ["package://meshpkg/meshes/part.stl", f"file://{share}", f"file://{private}", escape]
+    meshes = "".join(f"<visual><geometry><mesh filename='{n}'/></geometry></visual>" for n in names)
+    urdf = f"<robot name='foreign'><link name='base'>{meshes}</link></robot>"
+    topic = "/foreign_description"
+    probe.create_publisher(String, topic, latched()).publish(String(data=urdf))
+
+    async def session() -> None:
+        async with FoxgloveClient(rviz2.ws) as client:
+            await client.wait_for(f"{topic} advertised", lambda: topic in client.channels)
+            await client.subscribe([topic])
+            await client.wait_for("the description", lambda: topic in client.received)
+
+    asyncio.run(session())
+    assert rviz2.get("/asset/package/meshpkg/meshes/part.stl")[:3:2] == (200, share.read_bytes())
+    assert rviz2.get(f"/asset/file{share}")[0] == 200
+    assert rviz2.get(f"/asset/file{private}")[0] == 404
+    assert rviz2.get("/asset/package/meshpkg/../../../private/meshes/part.stl")[0] == 404
+
+
+def test_bad_requests_are_refused_cleanly(rviz2: Rviz2) -> None:
+    connection = http.client.HTTPConnection("127.0.0.1", rviz2.port, timeout=10)
+    try:
+        connection.putrequest("GET", "/", skip_host=True)
+        connection.putheader("Host", f"127.0.0.1:{rviz2.port}")
+        connection.putheader("Host", "elsewhere.example")
+        connection.endheaders()
+        response = connection.getresponse()
+        assert (response.status, response.read()) == (400, b"more than one Host header\n")
+    finally:
+        connection.close()
+    assert rviz2.get("/asset/file/a%00b.stl")[0] == 404
+
+    async def session() -> FoxgloveClient:
+        async with FoxgloveClient(rviz2.ws) as client:
+            channel = {"id": 1, "topic": "/in valid", "encoding": "cdr"}
+            channel["schemaName"] = "std_msgs/msg/String"
+            await client.send_json({"op": "advertise", "channels": [channel]})
+            await client.send_json({"op": "fetchAsset", "uri": "file:///a\u0000b", "requestId": 7})
+            await client.wait_for("an asset response", lambda: len(client.binary) >= 1)
+            await client.wait_for("a status", lambda: len(client.statuses) >= 1)
+            return client
+
+    client = asyncio.run(session())
+    assert "invalid topic name '/in valid'" in client.statuses[0]["message"]
+    assert client.binary[0][5] == 1  # an error response, the connection still open
+    assert not [line for line in rviz2.lines if "Traceback" in line], rviz2.lines
 
 
 # -- the page's protocol -----------------------------------------------------------------------

@@ -55,7 +55,7 @@ def test_a_mesh_robot_is_fetched_and_drawn(router: str, tmp_path: Path, open_vie
         fixed.transform.rotation.w = 1.0
         statics = node.create_publisher(TFMessage, "/tf_static", latched())
         statics.publish(TFMessage(transforms=[fixed]))
-        with running_rviz2(router) as rviz2:
+        with running_rviz2(router, "--asset-folder", str(tmp_path)) as rviz2:
             viewer = open_viewer(f"http://127.0.0.1:{rviz2.port}/")
             viewer.wait("s.robotLinks >= 2 && s.meshesLoaded >= 1", "the cube loaded and posed")
             assert viewer.stats()["fixedFrame"] == "base" and viewer.stats()["meshesFailed"] == 0

@@ -5,13 +5,13 @@ from __future__ import annotations
 from collections.abc import Callable, Sequence
 from typing import TYPE_CHECKING, TypeVar
 
+from launchkit.description.conditions import Condition
 from launchkit.description.events import ExecutionComplete
 from launchkit.description.substitutions.base import Value, perform
 from launchkit.description.truth import BOOL_EXPECTED, bool_value
-from launchkit.errors import LaunchkitError, Location, RuntimeLaunchError
+from launchkit.errors import LaunchFileError, LaunchkitError, Location, RuntimeLaunchError
 
 if TYPE_CHECKING:
-    from launchkit.description.conditions import Condition
     from launchkit.description.launch_context import LaunchContext
 
 T = TypeVar("T")
@@ -27,6 +27,13 @@ class Action:
 
     def __init__(self, location: Location | None = None, condition: Condition | None = None):
         self.location = location
+        if condition is not None and not isinstance(condition, Condition):  # a Python file's
+            raise LaunchFileError(
+                f"the condition of {type(self).__name__} is a {type(condition).__name__}, "
+                "not a condition",
+                location,
+                expected="IfCondition(...), UnlessCondition(...) or LaunchConfigurationEquals(...)",
+            )
         self.condition = condition
 
     def visit(self, context: LaunchContext) -> None:

@@ -16,7 +16,7 @@ from launchkit.description.events import EventHandler, ProcessExited, action_mat
 from launchkit.description.process_spec import OUTPUT_MODES, ProcessSpec
 from launchkit.description.substitutions.base import Value, perform
 from launchkit.description.truth import condition_value
-from launchkit.errors import Location, RuntimeLaunchError
+from launchkit.errors import LaunchFileError, Location, RuntimeLaunchError
 
 if TYPE_CHECKING:
     from launchkit.description.conditions import Condition
@@ -179,6 +179,7 @@ def start(
 ) -> None:
     """Hand ``spec`` to the runner as started by ``action``, with its ``on_exit`` actions
     registered as a handler of its exits."""
+    _refuse_nul(spec, action)
     spec.origin = action
     if options.on_exit_actions:
         handler = EventHandler(
@@ -188,6 +189,21 @@ def start(
         )
         context.register_handler(handler)
     context.runner.start_process(spec)
+
+
+def _refuse_nul(spec: ProcessSpec, action: Action) -> None:
+    """A NUL byte cannot be passed to a program (its command line, environment or working
+    folder): say where it came from rather than fail inside the spawn."""
+    texts = {"command line": spec.cmd, "environment": [f"{k}={v}" for k, v in spec.env.items()]}
+    texts["working folder"] = [spec.cwd or ""]
+    for what, words in texts.items():
+        bad = next((word for word in words if "\0" in word), None)
+        if bad is not None:
+            raise LaunchFileError(
+                f"the {what} of process '{spec.name}' contains a NUL byte: {bad!r}",
+                action.location,
+                expected="text without NUL bytes",
+            )
 
 
 class ExecuteProcess(Action):

@@ -74,6 +74,10 @@ class Command(Call):
                 f"unknown ON_STDERR '{on_stderr}' for $(command)",
                 expected="one of " + ", ".join(ON_STDERR),
             )
+        if "\0" in text:
+            raise self.fail(
+                f"command {text!r} contains a NUL byte", expected="a command line without one"
+            )
         try:
             argv = shlex.split(text)
         except ValueError as error:
@@ -84,6 +88,8 @@ class Command(Call):
             code, out, err = _run(argv, context)
         except OSError as error:
             raise self.fail(f"command {text!r} could not run: {error.strerror}") from None
+        except ValueError as error:  # a NUL byte in the launch's environment
+            raise self.fail(f"command {text!r} could not run: {error}") from None
         if code is None:
             raise self.fail(f"command {text!r} wrote more than {MAX_OUTPUT >> 20} MB: stopped")
         stdout = out.decode(errors="replace")

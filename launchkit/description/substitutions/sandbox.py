@@ -30,6 +30,7 @@ from launchkit.description.substitutions.sandbox_names import (
     MODULES,
     STR_METHODS,
     Function,
+    LimitError,
     Limits,
     Module,
     SandboxError,
@@ -44,7 +45,15 @@ from launchkit.description.substitutions.sandbox_names import (
     weight,
 )
 
-__all__ = ["BUILTINS", "MODULES", "STR_METHODS", "Limits", "SandboxError", "evaluate"]
+__all__ = [
+    "BUILTINS",
+    "MODULES",
+    "STR_METHODS",
+    "LimitError",
+    "Limits",
+    "SandboxError",
+    "evaluate",
+]
 
 
 # -- the evaluator -----------------------------------------------------------------------------
@@ -97,7 +106,7 @@ class _Evaluator:
 
     def value(self, node: ast.AST) -> Any:
         if time.monotonic() > self.deadline:
-            raise SandboxError(f"the expression took longer than {self.limits.seconds:g} s")
+            raise LimitError(f"the expression took longer than {self.limits.seconds:g} s")
         handler = getattr(self, f"_{type(node).__name__}", None)
         if handler is None:
             raise SandboxError(f"{_describe(node)} is not available in $(eval)")
@@ -262,6 +271,10 @@ def evaluate(
         return evaluator.value(tree)
     except SandboxError:
         raise
+    except MemoryError:
+        raise LimitError(
+            f"the expression needs more than {limits.memory // 2**20} MiB of memory"
+        ) from None
     except RecursionError:
         raise SandboxError("the expression is nested too deeply") from None
     except Exception as error:  # the expression itself failed (1/0, int('x'), ...)

@@ -21,6 +21,10 @@ class SandboxError(Exception):
     """The expression cannot be evaluated: its message says why, for the user."""
 
 
+class LimitError(SandboxError):
+    """The expression went past one of the :class:`Limits`."""
+
+
 @dataclass(frozen=True)
 class Limits:
     """Bounds on one evaluation."""
@@ -29,6 +33,14 @@ class Limits:
     int_bits: int = 10_000  # about 3000 decimal digits
     length: int = 100_000  # characters of a string, items of a collection
     expression: int = 100_000  # characters of the expression text
+    memory: int = 256 * 2**20  # bytes the evaluating process may grow by
+
+    def describe(self) -> str:
+        """The limits in words, for an error message."""
+        return (
+            f"{self.seconds:g} s of CPU time, {self.length:,} characters or items, "
+            f"{self.int_bits:,}-bit integers, {self.memory // 2**20} MiB of memory"
+        )
 
 
 @dataclass(frozen=True)
@@ -58,9 +70,9 @@ def int_bits(value: Any) -> int:
     return abs(value).bit_length() if isinstance(value, int) else 0
 
 
-def too_big(what: str) -> SandboxError:
+def too_big(what: str) -> LimitError:
     """The error for a result that would exceed a limit."""
-    return SandboxError(f"{what} would be too large for $(eval)")
+    return LimitError(f"{what} would be too large for $(eval)")
 
 
 def check_bits(bits: int, limits: Limits) -> None:

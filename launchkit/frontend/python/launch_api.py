@@ -47,7 +47,7 @@ def flatten(entities: Any, what: str) -> list[Action]:
     if isinstance(entities, Iterable) and not isinstance(entities, str):
         return [action for item in entities for action in flatten(item, what)]
     raise LaunchFileError(
-        f"{what} gave a {type(entities).__name__}, not a launch action",
+        f"{what}: a {type(entities).__name__} is not a launch action",
         here(),
         expected="launch actions (DeclareLaunchArgument, Node, ExecuteProcess, ...)",
     )
@@ -68,6 +68,12 @@ class DeclareLaunchArgument(lk.DeclareArgument):
         choices: Iterable[str] | None = None,
         condition: Condition | None = None,
     ) -> None:
+        if not isinstance(name, str):
+            raise LaunchFileError(
+                f"the name of DeclareLaunchArgument is a {type(name).__name__}",
+                here(),
+                expected="a str (an argument's name is plain text, not a substitution)",
+            )
         super().__init__(
             name,
             optional_value(default_value),
@@ -151,7 +157,7 @@ class GroupAction(lk.Group):
     ) -> None:
         pairs = [(to_value(k), to_value(v)) for k, v in (launch_configurations or {}).items()]
         location = here()
-        children = list(actions)
+        children = flatten(actions, "the actions of GroupAction")
         keeps: list[lk.Keep] = []
         if scoped and not forwarding:
             keeps = [lk.Keep(name, value) for name, value in pairs]
@@ -247,7 +253,8 @@ class TimerAction(lk.Timer):
         cancel_on_shutdown: bool = True,
         condition: Condition | None = None,
     ) -> None:
-        super().__init__(to_value(period), list(actions), cancel_on_shutdown, here(), condition)
+        children = flatten(actions, "the actions of TimerAction")
+        super().__init__(to_value(period), children, cancel_on_shutdown, here(), condition)
 
 
 class SetEnvironmentVariable(lk.SetEnv):

@@ -343,7 +343,8 @@ def main(argv: list[str]) -> int:
             server = SimServer(node, options)
             signal.signal(signal.SIGTERM, _stop)
             signal.signal(signal.SIGINT, _stop)
-            server.running = not stop_requested
+            # a Ctrl-C while the world loaded went to the ROS layer's handler, not to _stop
+            server.running = not stop_requested and node.context.ok()
             try:
                 server.run()
             finally:

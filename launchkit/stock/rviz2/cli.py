@@ -127,6 +127,15 @@ def parse_args(argv: list[str]) -> argparse.Namespace:
         metavar="URL",
         help="also accept WebSocket connections from pages of this origin (repeatable; * for any)",
     )
+    parser.add_argument(
+        "--asset-folder",
+        action="append",
+        default=[],
+        type=Path,
+        metavar="DIR",
+        help="also serve the mesh and texture files robot descriptions name in DIR (repeatable; "
+        "package share folders always are)",
+    )
     args = parser.parse_args(own)
     args.ignored = ignored
     return args

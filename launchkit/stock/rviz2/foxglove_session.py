@@ -24,6 +24,7 @@ from typing import Any
 
 from launchkit.ros.message_data import build
 from launchkit.ros.msgs import MessageTypeError, deserialize, normalize_type_name, serialize
+from launchkit.ros.names import InvalidNameError, expand
 from launchkit.stock.rviz2.hub import Channel, Hub, Message
 from launchkit.stock.rviz2.outbox import Frame, Outbox
 
@@ -186,6 +187,10 @@ class FoxgloveSession:
             encoding, schema_name = entry.get("encoding"), entry.get("schemaName")
             if not isinstance(topic, str) or not topic.startswith("/"):
                 raise ProtocolError(f"client channel {channel_id}: topic must be an absolute name")
+            try:
+                expand(topic, "rviz2", "/")
+            except InvalidNameError as error:
+                raise ProtocolError(f"client channel {channel_id}: {error.message}") from None
             if encoding not in ("cdr", "json"):
                 raise ProtocolError(
                     f"client channel {channel_id}: encoding {encoding!r} is not supported "

@@ -6,15 +6,19 @@ topic list, driving keys and joint sliders, laid out as the ``-d`` config says) 
 topics to Foxglove apps over the Foxglove WebSocket protocol, on one loopback port.
 
 Parameters (defaults from the command line): ``port`` (8765, or ``$LAUNCHKIT_VIEWER_PORT``; 0
-picks a free port), ``address`` (``127.0.0.1``: this machine only) and ``allowed_origins``
-(web pages of other origins allowed to connect; ``*`` for any). Under ``launchkit run`` the
-``viewer: http://...`` line goes to the launcher's console whatever the node's ``output``.
+picks a free port), ``address`` (``127.0.0.1``: this machine only), ``allowed_origins``
+(web pages of other origins allowed to connect; ``*`` for any), ``asset_folders`` (folders
+whose mesh and texture files may be served besides the package share folders) and
+``robot_description`` (a URDF given at start: the folders of its meshes are trusted too).
+Under ``launchkit run`` the ``viewer: http://...`` line goes to the launcher's console whatever
+the node's ``output``.
 """
 
 from __future__ import annotations
 
 import argparse
 import sys
+from pathlib import Path
 from typing import Any
 
 import launchkit.ros as ros
@@ -22,6 +26,7 @@ from launchkit.errors import UserError
 from launchkit.runtime.supervisor_client import SupervisorClient, SupervisorError
 from launchkit.stock import _entry
 from launchkit.stock.rviz2.access import AccessPolicy
+from launchkit.stock.rviz2.assets import AssetCatalog
 from launchkit.stock.rviz2.cli import parse_args
 from launchkit.stock.rviz2.config import RvizConfig, default_config, load_config
 from launchkit.stock.rviz2.hub import Hub
@@ -104,10 +109,20 @@ def serve(node: ros.Node, args: argparse.Namespace, config: RvizConfig) -> None:
         origins = _param(
             node, "allowed_origins", list(args.allow_origin), "a list of origins (strings)"
         )
+        folders = _param(
+            node,
+            "asset_folders",
+            [str(folder) for folder in args.asset_folder],
+            "a list of folders (strings)",
+        )
+        description = _param(node, "robot_description", "", "a URDF (a string)")
         if not 0 <= port <= 65535:
             raise UserError(f"parameter 'port' is {port}", expected="0 to 65535")
         policy = AccessPolicy(address, origins)
-        hub = Hub(link)
+        catalog = AssetCatalog(folders=[Path(folder).expanduser() for folder in folders])
+        if description:
+            catalog.trust_description(description)
+        hub = Hub(link, catalog)
         logger = node.get_logger()
         server = ViewerServer(
             hub, policy, port, {"config": config.to_page()}, lambda text: logger.warn(text)

@@ -170,6 +170,13 @@ class ViewerServer:
         self.loop.create_task(stop())
 
     def _process_request(self, connection: ServerConnection, request: Request) -> Response | None:
+        repeated = [
+            name
+            for name in ("Host", "Upgrade", "Origin", "If-None-Match")
+            if len(request.headers.get_all(name)) > 1
+        ]
+        if repeated:  # which one would a proxy in front of us have checked?
+            return text_response(400, "Bad Request", f"more than one {repeated[0]} header\n")
         host = request.headers.get("Host")
         if not self.policy.host_allowed(host):
             self._note(f"refused a request for Host {host!r} (not this machine's address)")
