@@ -76,7 +76,7 @@ class Bridge:
                 signal_handler_options=SignalHandlerOptions.NO,
             )
         except Exception as exc:  # rcl's errors (a wrong RMW_IMPLEMENTATION, say): one line
-            self._zenoh_context.shutdown()
+            self._zenoh_context.try_shutdown()
             message = " ".join(str(exc).split())
             raise RuntimeLaunchError(f"rclpy cannot start: {message}") from None
         # two rclpy nodes: topics on a single-threaded executor (rclpy's multi-threaded one
@@ -267,7 +267,7 @@ class Bridge:
         self.dds_node.destroy_node()
         self.dds_services_node.destroy_node()
         self._dds_context.try_shutdown()
-        self._zenoh_context.shutdown()
+        self._zenoh_context.try_shutdown()
 
 
 def _other(side: str) -> str:

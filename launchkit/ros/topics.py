@@ -12,10 +12,12 @@ from typing import TYPE_CHECKING, Any, TypedDict
 import zenoh
 from zenoh import ext
 
+from launchkit.ros.event_handler import MatchedEvent
 from launchkit.ros.keyexpr import decode_attachment, encode_attachment, entity_token, gid_of
 from launchkit.ros.msgs import message_type_name, type_hash
 from launchkit.ros.msgs._codec import codec
 from launchkit.ros.qos import DurabilityPolicy, HistoryPolicy, QoSProfile, ReliabilityPolicy
+from launchkit.ros.task import await_or_execute
 
 if TYPE_CHECKING:
     from launchkit.ros.node_interface import NodeInterface
@@ -66,6 +68,9 @@ class _Entity:
         self.type_name = message_type_name(msg_type)
         self.topic_name = node.resolve_topic_name(topic)
         self.qos_profile = qos
+        self.callback_group: Any = None  # set by the node (its default group unless given)
+        self.event_handlers: list[MatchedEvent] = []
+        qos = qos.resolved()  # what goes on the wire: rmw_zenoh's defaults for the rest
         self.type_hash = type_hash(self.type_name)
         self.key = node.topic_key(self.topic_name, self.type_name, self.type_hash)
         self.entity_id = node.context.next_entity_id()
@@ -93,7 +98,17 @@ class _Entity:
         # soon after (get_node_names, get_subscription_count) find it already filled
         _ = self.node.context.graph
 
+    def _set_event_callbacks(self, callbacks: Any) -> None:
+        """Start the event handlers ``callbacks`` asks for (the matched event)."""
+        matched = getattr(callbacks, "matched", None)
+        if matched is not None:
+            peer = "MS" if self.KIND == "MP" else "MP"
+            self.event_handlers.append(MatchedEvent(self, matched, peer, self.node.post))
+
     def _undeclare(self, *entities: Any) -> None:
+        for handler in self.event_handlers:
+            handler.destroy()
+        self.event_handlers.clear()
         for entity in (*entities, self._token):
             if entity is None:
                 continue
@@ -111,6 +126,7 @@ class Publisher(_Entity):
 
     def __init__(self, node: NodeInterface, msg_type: Any, topic: str, qos: QoSProfile) -> None:
         super().__init__(node, msg_type, topic, qos)
+        qos = qos.resolved()
         session = node.context.session
         self._sequence = 0
         self._lock = threading.Lock()
@@ -217,6 +233,7 @@ class Subscription(_Entity):
         raw: bool = False,
     ) -> None:
         super().__init__(node, msg_type, topic, qos)
+        qos = qos.resolved()
         self.callback = callback
         self.raw = raw
         self._with_info = _wants_message_info(callback)
@@ -224,8 +241,8 @@ class Subscription(_Entity):
         self._queue: deque[tuple[bytes, bytes | None, int]] = deque()
         self._queue_lock = threading.Lock()
         self._depth = None if qos.history == HistoryPolicy.KEEP_ALL else qos.effective_depth
-        self._scheduled = False  # a take is waiting in the node's work queue
-        self._take_work = (self._take, ())  # built once: posted for every message
+        self._scheduled = False  # the subscription waits in the node's work queue
+        self._executor_event = False  # an executor's handler for it is pending
         self.dropped = 0  # messages pushed out of a full queue (launchkit extension)
         session = node.context.session
         reliable = qos.reliability == ReliabilityPolicy.RELIABLE
@@ -272,25 +289,35 @@ class Subscription(_Entity):
             if self._scheduled:
                 return
             self._scheduled = True
-        self.node.post(self._take_work)
+        self.node.post(self)
 
-    def _take(self) -> None:
-        """The spinning thread: deliver the oldest queued message (and come back for the
-        next after the work already waiting)."""
+    def _take_for_executor(self) -> Callable[[], Any] | None:
+        """The executor takes the oldest queued message (the subscription goes back in the
+        queue, behind the work already waiting, while more messages wait)."""
         with self._queue_lock:
             if not self._queue:
                 self._scheduled = False
-                return
+                return None
             item = self._queue.popleft()
             self._scheduled = more = bool(self._queue)
         if more:
-            self.node.post(self._take_work)
-        self._deliver(*item)
+            self.node.post(self)
+        args = self._take_message(*item)
+        if args is None:
+            return None
+        callback = self.callback
 
-    def _deliver(self, payload: bytes, attachment: bytes | None, received: int = 0) -> None:
+        async def execute() -> None:
+            await await_or_execute(callback, *args)
+
+        return execute
+
+    def _take_message(
+        self, payload: bytes, attachment: bytes | None, received: int = 0
+    ) -> tuple[Any, ...] | None:
+        """The callback's arguments for one received message (None: not a valid one)."""
         # as rmw_zenoh, every publisher feeds every subscription whatever their QoS (its graph
         # cache does not enforce DDS's compatibility rules)
-        decoded = decode_attachment(attachment) if self._with_info else None
         message: Any = payload
         if not self.raw:
             try:
@@ -301,21 +328,19 @@ class Subscription(_Entity):
                     f"{self.type_name}: {exc}",
                     throttle_duration_sec=5.0,
                 )
-                return
+                return None
         if not self._with_info:
-            self.callback(message)
-            return
+            return (message,)
+        decoded = decode_attachment(attachment)
         self._received += 1
-        self.callback(
-            message,
-            MessageInfo(
-                source_timestamp=decoded.timestamp_ns if decoded else 0,
-                received_timestamp=received,
-                publication_sequence_number=decoded.sequence if decoded else 0,
-                reception_sequence_number=self._received,
-                publisher_gid=decoded.gid if decoded else b"",
-            ),
+        info = MessageInfo(
+            source_timestamp=decoded.timestamp_ns if decoded else 0,
+            received_timestamp=received,
+            publication_sequence_number=decoded.sequence if decoded else 0,
+            reception_sequence_number=self._received,
+            publisher_gid=decoded.gid if decoded else b"",
         )
+        return (message, info)
 
     def destroy(self) -> None:
         """Undeclare the subscriber and its token."""

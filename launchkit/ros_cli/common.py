@@ -62,11 +62,14 @@ def cli_node(args: argparse.Namespace) -> Iterator[Node]:
     try:
         with _connecting(context.router):
             node = Node(
-                f"_launchkit_cli_{os.getpid()}", context=context, start_parameter_services=False
+                f"_launchkit_cli_{os.getpid()}",
+                context=context,
+                start_parameter_services=False,
+                enable_rosout=False,
             )
         yield node
     finally:
-        context.shutdown()
+        context.try_shutdown()
 
 
 def graph_tokens(node: Node, timeout: float = 2.0) -> list[Token]:

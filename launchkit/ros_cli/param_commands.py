@@ -9,7 +9,7 @@ from typing import Any
 from launchkit.errors import RuntimeLaunchError
 from launchkit.ros.msgs import get_message, get_service
 from launchkit.ros.node import Node
-from launchkit.ros.params import Parameter, ParameterType, parse_value_text
+from launchkit.ros.params import Parameter, ParameterType, parameter_from_value, parse_value_text
 from launchkit.ros_cli.common import CliUsageError, add_router_option, cli_node, graph_tokens
 
 _LABELS = {
@@ -60,9 +60,12 @@ def _call(node: Node, target: str, srv_name: str, request: Any) -> Any:
             expected="a running node (see `launchkit node list`)",
         )
     try:
-        return client.call(request, timeout_sec=10.0)
+        response = client.call(request, timeout_sec=10.0)
     except Exception as exc:
         raise RuntimeLaunchError(f"{service}: {exc}") from None
+    if response is None:
+        raise RuntimeLaunchError(f"{service}: no answer within 10 s")
+    return response
 
 
 def _snake(name: str) -> str:
@@ -117,7 +120,9 @@ def _get(args: argparse.Namespace) -> int:
     with cli_node(args) as node:
         _require_node(node, target)
         response = _call(node, target, "GetParameters", srv.Request(names=[args.parameter_name]))
-    value = Parameter.from_msg_value(args.parameter_name, response.values[0])
+    value = Parameter(args.parameter_name, ParameterType.NOT_SET)
+    if response.values:  # none at all for an undeclared name, as rclpy answers
+        value = Parameter.from_msg_value(args.parameter_name, response.values[0])
     if value.type_ == ParameterType.NOT_SET:
         raise CliUsageError(
             f"parameter {args.parameter_name!r} is not set on {target}",
@@ -133,7 +138,7 @@ def _get(args: argparse.Namespace) -> int:
 def _set(args: argparse.Namespace) -> int:
     srv = get_service("rcl_interfaces/srv/SetParameters")
     target = _fqn(args.node_name)
-    param = Parameter(args.parameter_name, value=parse_value_text(args.value))
+    param = parameter_from_value(args.parameter_name, parse_value_text(args.value))
     msg = get_message("rcl_interfaces/msg/Parameter")(
         name=args.parameter_name, value=param.to_msg_value()
     )

@@ -89,5 +89,7 @@ def _call(args: argparse.Namespace) -> int:
             response = client.call(request, timeout_sec=args.timeout)
         except ServiceCallError as exc:
             raise RuntimeLaunchError(str(exc)) from None
+        if response is None:
+            raise RuntimeLaunchError(f"service {name} did not answer in {args.timeout} s")
     print(f"response:\n{short_repr(response)}\n")
     return 0

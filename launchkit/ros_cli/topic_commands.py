@@ -195,7 +195,7 @@ def _pub(args: argparse.Namespace) -> int:
             # like ros2: give subscribers a moment to match so a --once message is not lost
             pub.wait_for_subscriptions(wanted, timeout_sec=2.0)
         print("publisher: beginning loop")
-        rate = Rate(args.rate, Clock(clock_type=ClockType.STEADY_TIME))
+        rate = Rate(args.rate, Clock(clock_type=ClockType.STEADY_TIME), context=node.context)
         count = 0
         while True:
             count += 1

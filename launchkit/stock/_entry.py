@@ -20,13 +20,16 @@ def run(main: Callable[[list[str]], int], program: str) -> NoReturn:
     """Run ``main(sys.argv)``; report a launchkit error as ``program: error: ...``, no traceback.
 
     Then exit promptly (see :mod:`launchkit._exit`) with ``main``'s status, the error's (2 for
-    a user mistake), or 0 after Ctrl-C.
+    a user mistake), or 0 after Ctrl-C (``KeyboardInterrupt``) or SIGTERM (the spinning
+    executor's ``ExternalShutdownException``): a stop request is a normal end for a stock node.
     """
+    from launchkit.ros.executor import ExternalShutdownException
+
     try:
         status = main(sys.argv)
     except LaunchkitError as exc:
         print(f"{program}: {exc.format()}", file=sys.stderr, flush=True)
         status = exc.exit_status
-    except KeyboardInterrupt:
+    except (KeyboardInterrupt, ExternalShutdownException):
         status = 0
     exit_promptly(status)

@@ -50,4 +50,4 @@ def contexts(router_endpoint: str) -> Iterator[Callable[[], Context]]:
         yield make
     finally:
         for context in made:
-            context.shutdown()
+            context.try_shutdown()

@@ -40,6 +40,15 @@ SERVICES: dict[str, str] = {
     "rcl_interfaces/srv/DescribeParameters": (
         "string[] names\n---\nrcl_interfaces/ParameterDescriptor[] descriptors\n"
     ),
+    "rcl_interfaces/srv/GetLoggerLevels": (
+        "string[] names\n---\nrcl_interfaces/LoggerLevel[] levels\n"
+    ),
+    "rcl_interfaces/srv/SetLoggerLevels": (
+        "rcl_interfaces/LoggerLevel[] levels\n---\nrcl_interfaces/SetLoggerLevelsResult[] results\n"
+    ),
+    # the ROS 2 examples' and tutorials' service (example_interfaces has no wheel to check
+    # against; its definition is upstream's)
+    "example_interfaces/srv/AddTwoInts": "int64 a\nint64 b\n---\nint64 sum\n",
     "nav_msgs/srv/GetMap": "---\nnav_msgs/OccupancyGrid map\n",
     "nav_msgs/srv/GetPlan": (
         "geometry_msgs/PoseStamped start\n"

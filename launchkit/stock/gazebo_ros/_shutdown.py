@@ -18,7 +18,7 @@ def shutdown_within(ros: Any, seconds: float, code: int) -> None:
 
     def _close() -> None:
         try:
-            ros.shutdown()
+            ros.try_shutdown()
         finally:
             done.set()
 

@@ -76,7 +76,10 @@ def _call(client: Any, request: Any, deadline: float) -> Any:
     services = importlib.import_module("launchkit.ros.services")
     while True:
         try:
-            return client.call(request, timeout_sec=60.0)
+            response = client.call(request, timeout_sec=60.0)
+            if response is None:
+                raise SpawnError("calling /spawn_entity failed: no answer within 60 s")
+            return response
         except services.ServiceCallError as exc:
             # "No response" means no server took the request: the server's liveliness token can
             # reach us before its queryable does. Anything else is final.
@@ -134,7 +137,7 @@ def main(argv: list[str]) -> int:
     try:
         message = spawn(ros, args)
     finally:
-        ros.shutdown()
+        ros.try_shutdown()
     print(f"[spawn_entity] {message}", flush=True)
     return 0
 

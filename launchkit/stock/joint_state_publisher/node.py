@@ -107,7 +107,7 @@ def main(argv: list[str], name: str = "joint_state_publisher") -> int:
         ros.spin(node)
     finally:
         node.destroy_node()
-        ros.shutdown()
+        ros.try_shutdown()
     return 0
 
 

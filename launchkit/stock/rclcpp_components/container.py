@@ -96,7 +96,7 @@ def main(argv: list[str]) -> int:
         for instance in manager.components.values():
             instance.destroy_node()
         node.destroy_node()
-        ros.shutdown()
+        ros.try_shutdown()
     return 0
 
 

@@ -111,7 +111,7 @@ def main(argv: list[str]) -> int:
         ros.spin(node)
     finally:
         node.destroy_node()
-        ros.shutdown()
+        ros.try_shutdown()
     return 0
 
 

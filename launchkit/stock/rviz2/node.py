@@ -118,7 +118,7 @@ def main(argv: list[str]) -> int:
         if server is not None:
             server.close()
         node.destroy_node()
-        ros.shutdown()
+        ros.try_shutdown()
     return 0
 
 

@@ -59,7 +59,7 @@ def main(argv: list[str]) -> int:
                 publish(Velocity())
     finally:
         node.destroy_node()
-        ros.shutdown()
+        ros.try_shutdown()
     return 0
 
 

@@ -18,7 +18,10 @@ def main() -> None:
     pub = node.create_publisher(String, "/status", qos)
     pub.publish(String(data="up"))
     print("latched_listener ready", flush=True)
-    ros.spin(node)
+    try:
+        ros.spin(node)
+    except (KeyboardInterrupt, ros.ExternalShutdownException):
+        pass
     print("latched_listener done", flush=True)
 
 

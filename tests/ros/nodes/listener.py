@@ -10,8 +10,11 @@ def main() -> None:
     node = ros.Node("listener")
     node.create_subscription(String, "chatter", lambda m: print(f"heard: {m.data}", flush=True), 10)
     print("listener ready", flush=True)
-    ros.spin(node)
-    ros.shutdown()
+    try:
+        ros.spin(node)
+    except (KeyboardInterrupt, ros.ExternalShutdownException):
+        pass
+    ros.try_shutdown()
     print("listener done", flush=True)
 
 

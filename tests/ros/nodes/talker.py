@@ -17,9 +17,12 @@ def main() -> None:
 
     node.create_timer(0.02, tick)
     print("talker ready", flush=True)
-    ros.spin(node)
+    try:
+        ros.spin(node)
+    except (KeyboardInterrupt, ros.ExternalShutdownException):
+        pass  # Ctrl-C or a stop: the node ends normally, as an rclpy node does
     node.destroy_node()
-    ros.shutdown()
+    ros.try_shutdown()
     print("talker done", flush=True)
 
 
