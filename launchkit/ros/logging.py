@@ -13,6 +13,7 @@ import sys
 import threading
 import time
 from collections.abc import Callable
+from pathlib import Path
 from types import FrameType
 from typing import Any, TextIO
 
@@ -82,6 +83,30 @@ def get_logging_severity_from_string(log_severity: str) -> LoggingSeverity:
     return severity(log_severity)
 
 
+def initialize() -> None:
+    """Start the logging system (nothing to do: it is ready at import)."""
+
+
+def shutdown() -> None:
+    """Stop the logging system (nothing to release)."""
+
+
+def clear_config() -> None:
+    """Forget every logger level: all loggers at the default level, INFO."""
+    global _default_level
+    _levels.clear()
+    _default_level = LoggingSeverity.INFO
+
+
+def get_logging_directory() -> Path:
+    """Where ROS log files go (``ROS_LOG_DIR``, else ``$ROS_HOME/log``, else ``~/.ros/log``)."""
+    explicit = os.environ.get("ROS_LOG_DIR")
+    if explicit:
+        return Path(explicit).expanduser()
+    home = os.environ.get("ROS_HOME")
+    return (Path(home).expanduser() if home else Path.home() / ".ros") / "log"
+
+
 # (severity, logger name, message, file, function, line, stamp in ns)
 RosoutSink = Callable[[LoggingSeverity, str, str, str, str, int, int], None]
 _rosout: dict[str, RosoutSink] = {}
@@ -95,7 +120,7 @@ def add_rosout_sink(logger_name: str, sink: RosoutSink) -> None:
 
 def remove_rosout_sink(logger_name: str, sink: RosoutSink) -> None:
     """Stop sending ``logger_name``'s messages to ``sink``."""
-    if _rosout.get(logger_name) is sink:
+    if _rosout.get(logger_name) == sink:
         del _rosout[logger_name]
 
 

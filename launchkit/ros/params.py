@@ -14,6 +14,8 @@ from launchkit.errors import Location, UserError
 from launchkit.ros.arguments import RosArguments
 from launchkit.safe_yaml import load_file
 
+PARAMETER_SEPARATOR_STRING = "."
+
 
 class ParameterError(UserError):
     """A parameter file or value that cannot be used."""

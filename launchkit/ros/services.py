@@ -212,8 +212,10 @@ class Service(_ServiceEntity):
 class Client(_ServiceEntity):
     """Calls a service: ``call(req)``, ``call_async(req)``, ``wait_for_service(timeout)``.
 
-    A response completes its future as it arrives (Zenoh's thread), not through the client's
-    callback group; the future's done callbacks run in the node's executor, as in rclpy.
+    A response completes its future as it arrives (Zenoh's thread), so ``call()`` needs no
+    executor; the client then counts as ready in its node's executor (a ``spin_once`` returns
+    for it, as rclpy's does when it takes a response), and the future's done callbacks run
+    there.
     """
 
     KIND = "SC"
@@ -223,7 +225,9 @@ class Client(_ServiceEntity):
     ) -> None:
         super().__init__(node, srv_type, name, qos)
         self.raw = raw
-        self.callback_group: Any = None  # set by the node; accepted, as in rclpy
+        self.callback_group: Any = None  # set by the node (its default group unless given)
+        self._executor_event = False  # an executor's handler for it is pending
+        self._responded = False  # a response arrived that no executor has taken yet
         self._sequence = 0
         self._lock = threading.Lock()
         self._pending_requests: dict[int, Future] = {}
@@ -286,12 +290,14 @@ class Client(_ServiceEntity):
                 future.set_exception(
                     ServiceCallError(reply.err.payload.to_string() or "service error")
                 )
+            self._ready()
 
         def on_done() -> None:
             with self._lock:
                 if self._pending_requests.pop(sequence, None) is not future:
                     return
             future.set_exception(ServiceCallError(f"no response from service '{self.srv_name}'"))
+            self._ready()
 
         self.node.context.session.get(
             self.key,
@@ -302,6 +308,19 @@ class Client(_ServiceEntity):
             timeout=_FOREVER if timeout_sec is None else timeout_sec,
         )
         return future
+
+    def _ready(self) -> None:
+        with self._lock:
+            if self._responded:
+                return
+            self._responded = True
+        self.node.post(self)
+
+    def _take_for_executor(self) -> Callable[[], Any] | None:
+        """The response was delivered already: nothing left to run."""
+        with self._lock:
+            self._responded = False
+        return None
 
     def call(self, request: Any, timeout_sec: float | None = None) -> Any:
         """Send ``request`` and block for the response; None after ``timeout_sec`` (rclpy's).

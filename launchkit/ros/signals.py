@@ -56,6 +56,8 @@ def install_signal_handlers(options: SignalHandlerOptions = SignalHandlerOptions
         return
     uninstall_signal_handlers()
     for signum in _SIGNALS[options]:
+        if signal.getsignal(signum) == signal.SIG_IGN:
+            continue  # ignored on purpose (a shell's background job): it stays ignored
         _previous[signum] = signal.signal(signum, _on_signal)
     _current = options
 

@@ -243,6 +243,7 @@ class Subscription(_Entity):
         self._depth = None if qos.history == HistoryPolicy.KEEP_ALL else qos.effective_depth
         self._scheduled = False  # the subscription waits in the node's work queue
         self._executor_event = False  # an executor's handler for it is pending
+        self.on_arrival: Callable[[], None] | None = None  # told of every message (any thread)
         self.dropped = 0  # messages pushed out of a full queue (launchkit extension)
         session = node.context.session
         reliable = qos.reliability == ReliabilityPolicy.RELIABLE
@@ -286,14 +287,14 @@ class Subscription(_Entity):
                 self._queue.popleft()
                 self.dropped += 1
             self._queue.append(item)
-            if self._scheduled:
-                return
-            self._scheduled = True
-        self.node.post(self)
+            scheduled, self._scheduled = self._scheduled, True
+        if self.on_arrival is not None:
+            self.on_arrival()
+        if not scheduled:
+            self.node.post(self)
 
-    def _take_for_executor(self) -> Callable[[], Any] | None:
-        """The executor takes the oldest queued message (the subscription goes back in the
-        queue, behind the work already waiting, while more messages wait)."""
+    def take_message(self) -> tuple[Any, ...] | None:
+        """The callback's arguments for the oldest queued message (None: none waits)."""
         with self._queue_lock:
             if not self._queue:
                 self._scheduled = False
@@ -301,8 +302,12 @@ class Subscription(_Entity):
             item = self._queue.popleft()
             self._scheduled = more = bool(self._queue)
         if more:
-            self.node.post(self)
-        args = self._take_message(*item)
+            self.node.post(self)  # back in the queue, behind the work already waiting
+        return self._take_message(*item)
+
+    def _take_for_executor(self) -> Callable[[], Any] | None:
+        """The executor takes the oldest queued message."""
+        args = self.take_message()
         if args is None:
             return None
         callback = self.callback

@@ -1,0 +1,41 @@
+"""``rclpy.exceptions``: rclpy's exceptions."""
+
+from launchkit.ros.exceptions import (
+    InvalidHandle,
+    InvalidNamespaceException,
+    InvalidNodeNameException,
+    InvalidParameterException,
+    InvalidParameterTypeException,
+    InvalidParameterValueException,
+    InvalidServiceNameException,
+    InvalidTopicNameException,
+    NameValidationException,
+    NotInitializedException,
+    NoTypeSupportImportedException,
+    ParameterAlreadyDeclaredException,
+    ParameterException,
+    ParameterImmutableException,
+    ParameterNotDeclaredException,
+    ParameterUninitializedException,
+    ROSInterruptException,
+)
+
+__all__ = [
+    "InvalidHandle",
+    "InvalidNamespaceException",
+    "InvalidNodeNameException",
+    "InvalidParameterException",
+    "InvalidParameterTypeException",
+    "InvalidParameterValueException",
+    "InvalidServiceNameException",
+    "InvalidTopicNameException",
+    "NameValidationException",
+    "NoTypeSupportImportedException",
+    "NotInitializedException",
+    "ParameterAlreadyDeclaredException",
+    "ParameterException",
+    "ParameterImmutableException",
+    "ParameterNotDeclaredException",
+    "ParameterUninitializedException",
+    "ROSInterruptException",
+]
