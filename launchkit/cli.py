@@ -107,7 +107,12 @@ def build_parser() -> argparse.ArgumentParser:
     share.add_argument("package")
     executables = pkg_commands.add_parser("executables", help="a package's executables")
     executables.add_argument("package")
-    exec_ = commands.add_parser("exec", help="run one executable of a package (like ros2 run)")
+    exec_ = commands.add_parser(
+        "exec",
+        help="run one executable of a package (like ros2 run), or a Python file with --python",
+        usage="launchkit exec PACKAGE EXECUTABLE [ARGS...]\n"
+        "       launchkit exec --python FILE [ARGS...]",
+    )
     exec_.add_argument("package")
     exec_.add_argument("executable")
     exec_.add_argument("args", nargs=argparse.REMAINDER)
@@ -143,6 +148,8 @@ def main(argv: list[str] | None = None) -> int:
         return _guarded(lambda: bridge_main(argv[1:]), debug="--debug" in argv)
     if argv and argv[0] == "bag":
         return _guarded(lambda: _bag_command(argv[1:]), debug="--debug" in argv)
+    if argv[:2] == ["exec", "--python"]:
+        return _guarded(lambda: _exec_python(argv[2:]), debug=False)
     args = build_parser().parse_args(argv)
     if args.command is None:
         build_parser().print_help()
@@ -298,14 +305,34 @@ def _exec(args: argparse.Namespace, packages: object) -> int:
     from launchkit.packages import PackageIndex
 
     assert isinstance(packages, PackageIndex)
-    argv = packages.executable(args.package, args.executable) + list(args.args)
+    _run_as_child(packages.executable(args.package, args.executable) + list(args.args))
+    return 0  # not reached
+
+
+def _exec_python(argv: list[str]) -> int:
+    """``launchkit exec --python FILE [ARGS...]``: a user's own script, with the rclpy that a
+    process launchkit starts would get."""
+    if not argv or argv[0].startswith("-"):
+        raise UserError(
+            "exec --python needs a file", expected="launchkit exec --python FILE [ARGS...]"
+        )
+    if not os.path.isfile(argv[0]):
+        raise UserError(f"no file {argv[0]!r}", expected="a Python file to run")
+    _run_as_child([sys.executable, *argv])
+    return 0  # not reached
+
+
+def _run_as_child(argv: list[str]) -> None:
+    """Replace this process by ``argv``, in the environment launchkit gives its processes."""
+    from launchkit.ros.face import child_environment
+
+    os.environ.update(child_environment(argv, os.environ))
     os.environ.setdefault("PYTHONUNBUFFERED", "1")
     sys.stdout.flush()
     try:
         os.execv(argv[0], argv)
     except OSError as error:
         raise UserError(f"cannot run '{argv[0]}': {error.strerror}") from None
-    return 0  # not reached
 
 
 __all__ = ["console_main", "main"]

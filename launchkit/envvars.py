@@ -14,6 +14,11 @@
                                       50; 0: all)
 ``LAUNCHKIT_LOG_RUN_MB``              after a run's log folder holds this much (MB), child output is
                                       no longer logged (default 1000; 0: no limit)
+``LAUNCHKIT_RCLPY``                   which rclpy the processes launchkit starts get: ``launchkit``
+                                      (its own, the face folder first on ``PYTHONPATH``) or ``ros``
+                                      (the real one); unset, a sourced ROS 2 install's when there
+                                      is one (``ROS_DISTRO`` and an ``rclpy`` in an
+                                      ``AMENT_PREFIX_PATH`` prefix), else launchkit's
 ``LAUNCHKIT_REMOTE_GRACE``            seconds an agent keeps a launch's processes once it lost the
                                       launcher (killed, or the link cut; default 10)
 ``LAUNCHKIT_ROUTER``                  the Zenoh router every node connects to (``tcp/HOST:PORT``,
@@ -69,5 +74,6 @@ SUPERVISOR_SOCKET = "LAUNCHKIT_SUPERVISOR_SOCKET"
 AGENT_KEY = "LAUNCHKIT_AGENT_KEY"
 AGENT_TIMEOUT = "LAUNCHKIT_AGENT_TIMEOUT"
 REMOTE_GRACE = "LAUNCHKIT_REMOTE_GRACE"
+RCLPY = "LAUNCHKIT_RCLPY"
 TIMEOUT_SCALE = "LAUNCHKIT_TIMEOUT_SCALE"
 VIEWER_PORT = "LAUNCHKIT_VIEWER_PORT"
