@@ -286,7 +286,7 @@ def _info(args: argparse.Namespace) -> int:
 
 
 def _endpoint(t: Token, label: str) -> str:
-    qos = t.qos or QoSProfile()
+    qos = t.qos or QoSProfile(depth=10)
     gid = ".".join(f"{b:02x}" for b in t.gid)
     return (
         f"Node name: {t.node_name}\n"
