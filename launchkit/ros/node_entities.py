@@ -58,8 +58,13 @@ class EntityMethods:
         publisher_class: type[Publisher] = Publisher,
     ) -> Publisher:
         """A publisher of ``msg_type`` on ``topic`` (``qos_profile``: a profile or a depth)."""
-        publisher = publisher_class(self, msg_type, topic, as_profile(qos_profile))  # type: ignore[arg-type]
-        publisher.callback_group = callback_group or self.default_callback_group
+        publisher = publisher_class(
+            self,  # type: ignore[arg-type]
+            msg_type,
+            topic,
+            as_profile(qos_profile),
+            callback_group,
+        )
         publisher._set_event_callbacks(event_callbacks)
         self._publishers.append(publisher)
         self._wake_executor()
@@ -86,8 +91,8 @@ class EntityMethods:
             callback,
             as_profile(qos_profile),
             raw,
+            callback_group,
         )
-        self._group(subscription, callback_group)
         subscription._set_event_callbacks(event_callbacks)
         self._subscriptions.append(subscription)
         self._wake_executor()
@@ -103,8 +108,14 @@ class EntityMethods:
         raw: bool = False,
     ) -> Client:
         """A client of ``srv_name`` (``call``, ``call_async``, ``wait_for_service``)."""
-        client = Client(self, srv_type, srv_name, as_profile(qos_profile), raw)  # type: ignore[arg-type]
-        self._group(client, callback_group)
+        client = Client(
+            self,  # type: ignore[arg-type]
+            srv_type,
+            srv_name,
+            as_profile(qos_profile),
+            raw,
+            callback_group,
+        )
         self._clients.append(client)
         self._wake_executor()
         return client
@@ -128,8 +139,8 @@ class EntityMethods:
             callback,
             as_profile(qos_profile),
             raw,
+            callback_group,
         )
-        self._group(service, callback_group)
         self._services.append(service)
         self._wake_executor()
         return service

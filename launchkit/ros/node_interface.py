@@ -12,6 +12,7 @@ from __future__ import annotations
 from typing import TYPE_CHECKING, Any, Protocol
 
 if TYPE_CHECKING:
+    from launchkit.ros.callback_groups import CallbackGroup
     from launchkit.ros.context import Context
     from launchkit.ros.logging import RcutilsLogger
     from launchkit.ros.task import NodeTasks
@@ -52,6 +53,10 @@ class NodeInterface(Protocol):
 
     def topic_key(self, fqn: str, type_name: str, type_hash: str) -> str:
         """The Zenoh key expression of a topic or service of this node's domain."""
+
+    @property
+    def default_callback_group(self) -> CallbackGroup:
+        """The group of the entities made without one."""
 
     @property
     def scheduler(self) -> NodeTasks:

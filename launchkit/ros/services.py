@@ -18,6 +18,7 @@ from launchkit.ros.qos import HistoryPolicy, QoSProfile
 from launchkit.ros.task import Future, await_or_execute
 
 if TYPE_CHECKING:
+    from launchkit.ros.callback_groups import CallbackGroup
     from launchkit.ros.node_interface import NodeInterface
 
 
@@ -28,8 +29,18 @@ class ServiceCallError(RuntimeError):
 class _ServiceEntity:
     KIND = ""
 
-    def __init__(self, node: NodeInterface, srv_type: Any, name: str, qos: QoSProfile) -> None:
+    def __init__(
+        self,
+        node: NodeInterface,
+        srv_type: Any,
+        name: str,
+        qos: QoSProfile,
+        callback_group: CallbackGroup | None = None,
+    ) -> None:
         self.node = node
+        # before anything can arrive: the executor asks the group of every ready entity
+        self.callback_group = callback_group or node.default_callback_group
+        self.callback_group.add_entity(self)
         self.srv_type = srv_type
         self.type_name = message_type_name(srv_type)
         self.srv_name = node.resolve_service_name(name)
@@ -85,14 +96,14 @@ class Service(_ServiceEntity):
         callback: Callable[..., Any],
         qos: QoSProfile,
         raw: bool = False,
+        callback_group: CallbackGroup | None = None,
     ) -> None:
-        super().__init__(node, srv_type, name, qos)
+        super().__init__(node, srv_type, name, qos, callback_group)
         self.callback = callback
         self.raw = raw
         self._pending: deque[tuple[zenoh.Query, bytes, bytes | None]] = deque()
         self._pending_lock = threading.Lock()
         self._scheduled = False  # the service waits in the node's work queue
-        self.callback_group: Any = None  # set by the node (its default group unless given)
         self._executor_event = False  # an executor's handler for it is pending
         self._queryable = node.context.session.declare_queryable(
             self.key, self._on_query, complete=True
@@ -221,11 +232,16 @@ class Client(_ServiceEntity):
     KIND = "SC"
 
     def __init__(
-        self, node: NodeInterface, srv_type: Any, name: str, qos: QoSProfile, raw: bool = False
+        self,
+        node: NodeInterface,
+        srv_type: Any,
+        name: str,
+        qos: QoSProfile,
+        raw: bool = False,
+        callback_group: CallbackGroup | None = None,
     ) -> None:
-        super().__init__(node, srv_type, name, qos)
+        super().__init__(node, srv_type, name, qos, callback_group)
         self.raw = raw
-        self.callback_group: Any = None  # set by the node (its default group unless given)
         self._executor_event = False  # an executor's handler for it is pending
         self._responded = False  # a response arrived that no executor has taken yet
         self._sequence = 0

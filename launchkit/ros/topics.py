@@ -20,6 +20,7 @@ from launchkit.ros.qos import DurabilityPolicy, HistoryPolicy, QoSProfile, Relia
 from launchkit.ros.task import await_or_execute
 
 if TYPE_CHECKING:
+    from launchkit.ros.callback_groups import CallbackGroup
     from launchkit.ros.node_interface import NodeInterface
 
 
@@ -62,13 +63,22 @@ class _Entity:
 
     KIND = ""
 
-    def __init__(self, node: NodeInterface, msg_type: Any, topic: str, qos: QoSProfile) -> None:
+    def __init__(
+        self,
+        node: NodeInterface,
+        msg_type: Any,
+        topic: str,
+        qos: QoSProfile,
+        callback_group: CallbackGroup | None = None,
+    ) -> None:
         self.node = node
         self.msg_type = msg_type
         self.type_name = message_type_name(msg_type)
         self.topic_name = node.resolve_topic_name(topic)
         self.qos_profile = qos
-        self.callback_group: Any = None  # set by the node (its default group unless given)
+        # before anything can arrive: the executor asks the group of every ready entity
+        self.callback_group = callback_group or node.default_callback_group
+        self.callback_group.add_entity(self)
         self.event_handlers: list[MatchedEvent] = []
         qos = qos.resolved()  # what goes on the wire: rmw_zenoh's defaults for the rest
         self.type_hash = type_hash(self.type_name)
@@ -124,8 +134,15 @@ class Publisher(_Entity):
 
     KIND = "MP"
 
-    def __init__(self, node: NodeInterface, msg_type: Any, topic: str, qos: QoSProfile) -> None:
-        super().__init__(node, msg_type, topic, qos)
+    def __init__(
+        self,
+        node: NodeInterface,
+        msg_type: Any,
+        topic: str,
+        qos: QoSProfile,
+        callback_group: CallbackGroup | None = None,
+    ) -> None:
+        super().__init__(node, msg_type, topic, qos, callback_group)
         qos = qos.resolved()
         session = node.context.session
         self._sequence = 0
@@ -231,8 +248,9 @@ class Subscription(_Entity):
         callback: Callable[..., Any],
         qos: QoSProfile,
         raw: bool = False,
+        callback_group: CallbackGroup | None = None,
     ) -> None:
-        super().__init__(node, msg_type, topic, qos)
+        super().__init__(node, msg_type, topic, qos, callback_group)
         qos = qos.resolved()
         self.callback = callback
         self.raw = raw
