@@ -115,7 +115,6 @@ def tree_cpu(root: int) -> tuple[float, str]:
     parents: dict[int, int] = {}
     cpu: dict[int, tuple[float, float]] = {}
     commands: dict[int, str] = {}
-    stdout: dict[int, str] = {}
     tick = os.sysconf("SC_CLK_TCK")
     for entry in Path("/proc").iterdir():
         if not entry.name.isdigit():
@@ -123,7 +122,6 @@ def tree_cpu(root: int) -> tuple[float, str]:
         try:
             fields = (entry / "stat").read_text().rsplit(")", 1)[1].split()
             commands[int(entry.name)] = (entry / "cmdline").read_text()
-            stdout[int(entry.name)] = os.readlink(entry / "fd" / "1")
         except OSError:
             continue
         pid = int(entry.name)
@@ -143,24 +141,7 @@ def tree_cpu(root: int) -> tuple[float, str]:
         return parts[-2] if parts[-1] == "node" and len(parts) > 1 else parts[-1]
 
     def name(pid: int) -> str:
-        argv = commands[pid].split("\0")
-        if pid == root:
-            return "launcher"
-        if any(arg.endswith(("plugin_trampoline.py", "fork_trampoline.py")) for arg in argv):
-            return "trampoline"
-        copies, first = 0, pid  # a forked copy has its parent's command line
-        while commands.get(parents.get(first, 0)) == commands[pid]:
-            first, copies = parents[first], copies + 1
-        if "launchkit.stock._node_host" in argv:
-            if copies == 0:
-                return "node host"
-            if copies == 1:  # a stock node: named by the trampoline that writes where it does
-                for other, link in stdout.items():
-                    if link == stdout.get(pid) and "fork_trampoline.py" in commands[other]:
-                        return "forked " + module_of(commands[other].split("\0"))
-                return "forked node"
-            copies -= 1  # the server's plugin host and its nodes
-        return (module_of(argv), "plugin host", "forked plugin node")[min(copies, 2)]
+        return "launcher" if pid == root else module_of(commands[pid].split("\0"))
 
     ours = sorted(pid for pid in cpu if under(pid))
     total = sum(sum(cpu[pid]) for pid in ours)

@@ -72,7 +72,7 @@ def frame_costs(frames: int, egl: bool) -> dict[str, float]:
     import numpy as np
     import zenoh
 
-    from launchkit.ros.msgs._codec import codec
+    from launchkit.ros.msgs import codec
     from launchkit.stock.gazebo_ros import messages
 
     sim = Simulation(load_world(resolve_world("obstacles")), egl=egl)

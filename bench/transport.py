@@ -367,11 +367,9 @@ def _case_steps(ros: Any, node: Any, msg_type: Any, build: Any) -> dict[str, flo
     import zenoh
 
     from launchkit.ros.keyexpr import decode_attachment, encode_attachment
-    from launchkit.ros.msgs._codec import codec
-    from launchkit.ros.msgs._typestore import typestore
+    from launchkit.ros.msgs import codec
 
-    store = typestore()
-    name = msg_type.__msgtype__
+    name = msg_type._TYPE_NAME
     msg = build()
     coder = codec(name)
     data = coder.serialize(msg)
@@ -389,18 +387,12 @@ def _case_steps(ros: Any, node: Any, msg_type: Any, build: Any) -> dict[str, flo
     rows = {
         "build message": _per_call_us(build),
         "serialize": _per_call_us(lambda: coder.serialize(msg)),
-        "  before: Typestore.serialize_cdr + bytes()": _per_call_us(
-            lambda: bytes(store.serialize_cdr(msg, name))
-        ),
         "attachment": _per_call_us(lambda: encode_attachment(2, time.time_ns(), gid)),
         "put (no remote subscriber)": _per_call_us(
             lambda: publisher.put(data, attachment=attachment)
         ),
         "receive: copy out of Zenoh": _per_call_us(lambda: sample.payload.to_bytes()),
         "decode": _per_call_us(lambda: coder.deserialize(payload)),
-        "  before: Typestore.deserialize_cdr": _per_call_us(
-            lambda: store.deserialize_cdr(payload, name)
-        ),
         "decode attachment (2-argument callbacks)": _per_call_us(
             lambda: decode_attachment(attachment)
         ),
@@ -451,7 +443,6 @@ class _QueueHandOff:
 
 def steps() -> None:
     """Print the cost of each step of the per-message path (see the module's docstring)."""
-    import numpy as np
 
     import launchkit.ros as ros
     from launchkit.ros.msgs import get_message
@@ -460,7 +451,7 @@ def steps() -> None:
     node = ros.Node(f"bench_steps_{os.getpid()}")
     array_type = get_message("std_msgs/msg/UInt8MultiArray")
     image_type = get_message("sensor_msgs/msg/Image")
-    pixels = np.zeros(800 * 800 * 3, dtype=np.uint8)
+    pixels = bytes(800 * 800 * 3)
     cases = [
         ("100 B UInt8MultiArray", array_type, lambda: array_type(data=bytes(100))),
         ("100 KB UInt8MultiArray", array_type, lambda: array_type(data=bytes(100_000))),

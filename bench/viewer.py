@@ -222,7 +222,7 @@ def decode_costs() -> None:
         "sensor_msgs/msg/Image (800x800 rgb8)": (
             "sensor_msgs/msg/Image",
             get_message("sensor_msgs/msg/Image")(
-                width=800, height=800, encoding="rgb8", step=2400, data=np.zeros(1920000, np.uint8)
+                width=800, height=800, encoding="rgb8", step=2400, data=bytes(1920000)
             ),
         ),
     }

@@ -1,10 +1,14 @@
-"""Ending a launchkit process promptly once its work is done (or Ctrl-C ended it).
+"""Ending a launchkit process once its work is done (or Ctrl-C ended it), in bounded time.
 
-A node or CLI process that has imported the ROS layer (zenoh, the message types, numpy; the
-stock nodes also PyBullet) spends 0.3 to 2.5 s of a busy machine's time in the
-interpreter's own teardown of thousands of modules and objects after ``main`` returns: long
-enough for a supervisor or a test to give up on it after SIGINT. Nothing in that teardown is
-needed: the sockets close with the process, and the cleanup that matters is done here first.
+Two things can keep a node or CLI process that has used the ROS layer from ending after
+``main`` returns. A Zenoh session that will not close holds non-daemon threads, which the
+interpreter joins at exit: the process would hang until the launcher's SIGKILL, or forever
+without a launcher. And the interpreter's own teardown of the modules it imported (zenoh, the
+message types, numpy; the stock nodes also PyBullet) took 0.3 to 2.6 s on a busy two-core
+machine, long enough for a supervisor to escalate to SIGKILL after SIGINT and report a clean
+stop as a kill (issue 9: ``topic hz`` was SIGKILLed in a loaded CI run). So the cleanup that
+matters (the ROS sessions, ``atexit``, the output streams) runs here under a bound, and then the
+process ends without the teardown, whose work the kernel does anyway.
 """
 
 from __future__ import annotations

@@ -5,6 +5,7 @@ from __future__ import annotations
 import os
 import sys
 import sysconfig
+import threading
 from collections.abc import Mapping
 from pathlib import Path
 from typing import IO, TYPE_CHECKING
@@ -15,7 +16,7 @@ from launchkit.description.actions.base import Action
 from launchkit.description.launch_context import LaunchContext, Runner
 from launchkit.description.launch_description import LaunchDescription
 from launchkit.description.ros_link import RosLink
-from launchkit.errors import LaunchkitError, PackageNotFoundError
+from launchkit.errors import LaunchkitError, PackageNotFoundError, UserError
 from launchkit.frontend.launch_loader import LaunchLoader, collector_paused
 from launchkit.packages import PackageIndex, is_file
 from launchkit.runtime.hooks import SupervisorHooks
@@ -238,7 +239,16 @@ def run(
     ``router_options``: what the launch's router adds to reach other hosts (default: the
     ``LAUNCHKIT_ROUTER_*`` variables). ``agent_key`` and ``remote_grace`` (seconds) are for the
     processes that ``<group machine=...>`` puts on other hosts (``docs/multi-host.md``).
+
+    Call it from the main thread (it handles SIGINT and SIGTERM, which Python delivers only
+    there); from another thread it raises :class:`UserError` before it creates anything.
     """
+    if threading.current_thread() is not threading.main_thread():
+        raise UserError(
+            "launchkit.run() was called from a thread other than the main thread",
+            expected="a call from the main thread, which alone receives signals (Ctrl-C)",
+            hint="to launch from a worker thread, start `launchkit run FILE` as a subprocess",
+        )
     from launchkit.remote.launch import RemoteLaunch
     from launchkit.runtime.logdir import LogLimits, create_run_dir
     from launchkit.runtime.network import NodeNetwork

@@ -75,7 +75,13 @@ def parse_launch_arguments(items: list[str]) -> dict[str, str]:
     values: dict[str, str] = {}
     for item in items:
         name, sep, value = item.partition(":=")
-        if not sep or not name or not name.strip():
+        if not sep:
+            raise LaunchArgumentError(
+                f"{item!r} is not a launch argument assignment",
+                expected="NAME:=VALUE",
+                hint=f"did you mean '{item.replace('=', ':=', 1)}'?" if "=" in item else None,
+            )
+        if not name.strip():
             raise LaunchArgumentError(f"malformed launch argument {item!r}", expected="NAME:=VALUE")
         values[name] = value
     return values

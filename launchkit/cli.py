@@ -125,6 +125,9 @@ def build_parser() -> argparse.ArgumentParser:
             name, help=f"ROS {name} tools (see launchkit {name} --help)", add_help=False
         )
     commands.add_parser("bag", help="record and play rosbag2 bags (see launchkit bag --help)")
+    commands.add_parser(
+        "build", help="build a ROS 2 workspace's src/ into install/ (see launchkit build --help)"
+    )
     return parser
 
 
@@ -148,6 +151,10 @@ def main(argv: list[str] | None = None) -> int:
         return _guarded(lambda: bridge_main(argv[1:]), debug="--debug" in argv)
     if argv and argv[0] == "bag":
         return _guarded(lambda: _bag_command(argv[1:]), debug="--debug" in argv)
+    if argv and argv[0] == "build":
+        from launchkit.workspace.cli import main as build_main
+
+        return _guarded(lambda: build_main(argv[1:]), debug="--debug" in argv)
     if argv[:2] == ["exec", "--python"]:
         return _guarded(lambda: _exec_python(argv[2:]), debug=False)
     args = build_parser().parse_args(argv)
@@ -229,19 +236,20 @@ def _run_with_events(args: argparse.Namespace, fd: int) -> int:
 def _launch(args: argparse.Namespace, hooks: SupervisorHooks | None = None) -> int:
     from launchkit import api
     from launchkit.checks import parse_launch_arguments
-    from launchkit.packages import PackageIndex, is_file
+    from launchkit.packages import PackageIndex
 
-    files = [i for i in args.items if ":=" not in i]
-    if files and is_file(Path(files[0])) and args.items[0] == files[0]:
-        files = files[:1]  # FILE then arguments: anything else is a malformed argument
-    elif len(files) > 2 or not files or any(":=" in i for i in args.items[: len(files)]):
+    items = args.items
+    if ":=" in items[0]:
         raise UserError(
             "launch file arguments are out of order",
             expected="[PKG] FILE followed by name:=value items",
         )
-    arguments = parse_launch_arguments(args.items[len(files) :])
+    # FILE or PKG FILE, then arguments: any other item is a malformed argument
+    with_package = len(items) > 1 and ":=" not in items[1] and not _names_a_file(items[0])
+    files = items[: 2 if with_package else 1]
+    arguments = parse_launch_arguments(items[len(files) :])
     packages = PackageIndex()
-    path = api.resolve_launch_file(files[0], files[1] if len(files) == 2 else None, packages)
+    path = api.resolve_launch_file(files[0], files[1] if with_package else None, packages)
     try:
         if _PROCESS_ENDS_AFTER and (args.command == "check" or args.print_description):
             # the process ends with os._exit after this: a collection of every object a large
@@ -278,6 +286,14 @@ def _launch(args: argparse.Namespace, hooks: SupervisorHooks | None = None) -> i
     except LaunchkitError as error:
         error.exit_status = 2  # raised before anything started: the input is at fault
         raise
+
+
+def _names_a_file(item: str) -> bool:
+    """Whether ``launchkit run ITEM ...`` names a launch file, not a package: an existing file,
+    or a name with a dot or a slash, which a package's name never has (REP 144)."""
+    from launchkit.packages import is_file
+
+    return is_file(Path(item)) or "." in item or os.sep in item
 
 
 def _print(report: str) -> None:

@@ -17,6 +17,9 @@ outermost first: ``a.launch.xml:12:3 -> b.launch.py:40: error: ...``.
 
 from __future__ import annotations
 
+import difflib
+from collections.abc import Iterable
+
 from launchkit._record import Frozen, slot_setters
 
 _NAMED_CONTROLS = {"\n": "\\n", "\r": "\\r", "\0": "\\0"}
@@ -32,6 +35,13 @@ _ESCAPES = {
 def printable(text: str) -> str:
     """``text`` with its control characters escaped (``\\x1b``, ``\\r``, ``\\n``), tabs kept."""
     return text.translate(_ESCAPES)
+
+
+def did_you_mean(name: str, choices: Iterable[str]) -> str | None:
+    """A hint naming the one of ``choices`` that ``name`` looks like a typo of (``exe`` for
+    ``exec``), or None when none is close: for unknown tags, attributes and substitutions."""
+    close = difflib.get_close_matches(name, list(choices), n=1)
+    return f"did you mean '{close[0]}'?" if close else None
 
 
 class Location(Frozen):

@@ -121,6 +121,11 @@ class PackageIndex:
 
     # -- queries -----------------------------------------------------------------------------
 
+    def ament_package(self, name: str) -> FoundPackage | None:
+        """The package ``name`` if an ``AMENT_PREFIX_PATH`` prefix has it (no Python
+        distribution's registrations are read: cheap enough for an import hook)."""
+        return self._ament_package(name)
+
     def find(self, name: str) -> FoundPackage:
         """The package ``name``; :class:`PackageNotFoundError` listing where it looked."""
         if name not in self._cache:

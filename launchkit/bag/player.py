@@ -24,8 +24,7 @@ from launchkit.bag.metadata import BagError
 from launchkit.bag.playclock import PlaybackClock, Wait
 from launchkit.bag.qos import offer_for_recorded
 from launchkit.bag.selection import TopicSelection
-from launchkit.ros.msgs import MessageTypeError, get_message
-from launchkit.ros.msgs._typestore import typestore
+from launchkit.ros.msgs import MessageTypeError, get_message, register_types
 from launchkit.ros.node import Node
 from launchkit.ros.qos import QoSProfile, ReliabilityPolicy
 from launchkit.ros.topics import Publisher
@@ -84,7 +83,7 @@ def _message_type(connection: Connection) -> Any:
     except MessageTypeError:
         if connection.msgdef.format != MessageDefinitionFormat.MSG:
             raise
-        typestore().register(get_types_from_msg(connection.msgdef.data, connection.msgtype))
+        register_types(get_types_from_msg(connection.msgdef.data, connection.msgtype))
         return get_message(connection.msgtype)
 
 

@@ -19,7 +19,13 @@ from rosbags.interfaces import (
     QosTime,
 )
 
-from launchkit.ros.qos import DurabilityPolicy, HistoryPolicy, QoSProfile, ReliabilityPolicy
+from launchkit.ros.qos import (
+    DurabilityPolicy,
+    HistoryPolicy,
+    QoSProfile,
+    ReliabilityPolicy,
+    known_profile,
+)
 
 #: rmw's infinite duration as rosbag2 writes it (deadline, lifespan, liveliness lease).
 INFINITE = QosTime(9223372036, 854775807)
@@ -28,19 +34,6 @@ DEFAULT_DEPTH = 10
 
 Warn = Callable[[str], object]
 
-_RELIABILITY = {
-    ReliabilityPolicy.RELIABLE: QosReliability.RELIABLE,
-    ReliabilityPolicy.BEST_EFFORT: QosReliability.BEST_EFFORT,
-}
-_DURABILITY = {
-    DurabilityPolicy.TRANSIENT_LOCAL: QosDurability.TRANSIENT_LOCAL,
-    DurabilityPolicy.VOLATILE: QosDurability.VOLATILE,
-}
-_HISTORY = {
-    HistoryPolicy.KEEP_LAST: QosHistory.KEEP_LAST,
-    HistoryPolicy.KEEP_ALL: QosHistory.KEEP_ALL,
-}
-
 
 def to_bag_qos(profile: QoSProfile) -> Qos:
     """A publisher's profile as one entry of ``offered_qos_profiles``.
@@ -48,11 +41,12 @@ def to_bag_qos(profile: QoSProfile) -> Qos:
     launchkit (like rmw_zenoh's defaults) has no deadline, lifespan or liveliness lease: they
     are written as rmw's infinite duration, liveliness as automatic.
     """
+    known = known_profile(profile.depth, profile.reliability, profile.durability, profile.history)
     return Qos(
-        _HISTORY[profile.history],
-        profile.depth,
-        _RELIABILITY[profile.reliability],
-        _DURABILITY[profile.durability],
+        QosHistory(int(known.history)),
+        known.depth,
+        QosReliability(int(known.reliability)),
+        QosDurability(int(known.durability)),
         INFINITE,
         INFINITE,
         QosLiveliness.AUTOMATIC,
@@ -119,12 +113,6 @@ def offer_for_recorded(topic: str, recorded: Sequence[Qos], warn: Warn) -> QoSPr
         )
         return QoSProfile(depth=DEFAULT_DEPTH)
     first = recorded[0]
-    return QoSProfile(
-        depth=DEFAULT_DEPTH,
-        reliability=ReliabilityPolicy.BEST_EFFORT
-        if first.reliability == QosReliability.BEST_EFFORT
-        else ReliabilityPolicy.RELIABLE,
-        durability=DurabilityPolicy.TRANSIENT_LOCAL
-        if first.durability == QosDurability.TRANSIENT_LOCAL
-        else DurabilityPolicy.VOLATILE,
+    return known_profile(
+        DEFAULT_DEPTH, first.reliability.value, first.durability.value, HistoryPolicy.KEEP_LAST
     )

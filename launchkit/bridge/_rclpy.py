@@ -13,7 +13,7 @@ from types import ModuleType
 from typing import Any
 
 from launchkit.errors import UserError
-from launchkit.ros.qos import DurabilityPolicy, HistoryPolicy, QoSProfile, ReliabilityPolicy
+from launchkit.ros.qos import QoSProfile, known_profile
 
 EXTRA = "launchkit[ros2]"
 WHEEL_PLATFORM = "CPython 3.11 on Linux x86_64"
@@ -75,34 +75,17 @@ def to_rclpy_qos(qos: QoSProfile) -> Any:
     from rclpy.qos import QoSProfile as RclpyQoS
     from rclpy.qos import ReliabilityPolicy as Reliability
 
-    keep_all = qos.history == HistoryPolicy.KEEP_ALL
+    known = known_profile(qos.effective_depth, qos.reliability, qos.durability, qos.history)
     return RclpyQoS(  # type: ignore[no-untyped-call]
-        history=History.KEEP_ALL if keep_all else History.KEEP_LAST,
-        depth=qos.effective_depth,
-        reliability=Reliability.RELIABLE
-        if qos.reliability == ReliabilityPolicy.RELIABLE
-        else Reliability.BEST_EFFORT,
-        durability=Durability.TRANSIENT_LOCAL
-        if qos.durability == DurabilityPolicy.TRANSIENT_LOCAL
-        else Durability.VOLATILE,
+        history=History(int(known.history)),
+        depth=known.depth,
+        reliability=Reliability(int(known.reliability)),
+        durability=Durability(int(known.durability)),
     )
 
 
 def from_rclpy_qos(qos: Any, default_depth: int) -> QoSProfile:
     """A launchkit profile for what DDS discovery reports (Fast DDS reports no depth)."""
-    from rclpy.qos import DurabilityPolicy as Durability
-    from rclpy.qos import HistoryPolicy as History
-    from rclpy.qos import ReliabilityPolicy as Reliability
-
-    return QoSProfile(
-        depth=int(qos.depth) or default_depth,
-        reliability=ReliabilityPolicy.BEST_EFFORT
-        if qos.reliability == Reliability.BEST_EFFORT
-        else ReliabilityPolicy.RELIABLE,
-        durability=DurabilityPolicy.TRANSIENT_LOCAL
-        if qos.durability == Durability.TRANSIENT_LOCAL
-        else DurabilityPolicy.VOLATILE,
-        history=HistoryPolicy.KEEP_ALL
-        if qos.history == History.KEEP_ALL
-        else HistoryPolicy.KEEP_LAST,
+    return known_profile(
+        int(qos.depth) or default_depth, qos.reliability, qos.durability, qos.history
     )

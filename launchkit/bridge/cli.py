@@ -7,6 +7,7 @@ import signal
 import threading
 from typing import Any
 
+from launchkit.bridge.bridge import Bridge, BridgeOptions
 from launchkit.bridge.plan import NameFilter
 from launchkit.errors import UserError
 
@@ -58,8 +59,6 @@ def main(argv: list[str], program: str = "launchkit-bridge") -> int:
     args = build_parser().parse_args(own)
     if not args.poll > 0:
         raise BridgeUsageError(f"--poll {args.poll}", expected="a number of seconds > 0")
-    from launchkit.bridge.bridge import Bridge, BridgeOptions
-
     options = BridgeOptions(
         names=NameFilter.parse(args.topics, args.exclude),
         services=not args.no_services,

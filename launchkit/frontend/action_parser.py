@@ -17,7 +17,7 @@ from launchkit.description.actions.base import Action
 from launchkit.description.conditions import Condition
 from launchkit.description.substitutions.base import Text, Value
 from launchkit.description.truth import condition_value
-from launchkit.errors import Location
+from launchkit.errors import Location, did_you_mean
 from launchkit.frontend.base_entity import Entity
 
 #: How deep actions may nest (a group in a group ...; real files nest a few levels): parsing
@@ -84,7 +84,7 @@ class ActionParser:
             raise entity.error(
                 f"unknown tag {entity.label()}",
                 expected="one of: " + ", ".join(self.tags()),
-                hint=_ROS1_HINTS.get(entity.tag),
+                hint=_ROS1_HINTS.get(entity.tag) or did_you_mean(entity.tag, self.tags()),
             )
         condition = parse_condition(entity)
         if self._depth >= MAX_NESTING:

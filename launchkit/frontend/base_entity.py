@@ -20,7 +20,7 @@ from collections.abc import Sequence
 from launchkit.description.substitutions.base import Text, Value, literal
 from launchkit.description.substitutions.grammar import parse_value
 from launchkit.description.truth import BOOL_EXPECTED, bool_value
-from launchkit.errors import LaunchFileError, Location
+from launchkit.errors import LaunchFileError, Location, did_you_mean
 
 _CHECKS = {
     "bool": BOOL_EXPECTED,
@@ -134,9 +134,13 @@ class Entity(ABC):
         """A required attribute's value; an error naming the attribute when missing."""
         value = self.value(name)
         if value is None:
+            expected = what or self.example(name)
+            for written in self.attribute_names():
+                hint = None if written in self._read else did_you_mean(written, [name])
+                if hint:  # `exe:` for `exec:`: what the user wrote wrong, not a missing key
+                    raise self._unknown(written, expected, hint)
             raise self.error(
-                f"{self.label()} is missing {self.ATTRIBUTE} '{name}'",
-                expected=what or self.example(name),
+                f"{self.label()} is missing {self.ATTRIBUTE} '{name}'", expected=expected
             )
         return value
 
@@ -212,9 +216,14 @@ class Entity(ABC):
         for name in self.attribute_names():
             if name not in self._read:
                 allowed = sorted(self._read)
-                expected = ", ".join(allowed) if allowed else f"no {self.ATTRIBUTE}s"
-                raise LaunchFileError(
-                    f"unknown {self.ATTRIBUTE} '{name}' on {self.label()}",
-                    self.key_location(name),
-                    expected=f"one of: {expected}" if allowed else expected,
-                )
+                expected = f"one of: {', '.join(allowed)}" if allowed else f"no {self.ATTRIBUTE}s"
+                raise self._unknown(name, expected, did_you_mean(name, allowed))
+
+    def _unknown(self, name: str, expected: str, hint: str | None) -> LaunchFileError:
+        """The error for attribute ``name``, which no parser reads, located at its key."""
+        return LaunchFileError(
+            f"unknown {self.ATTRIBUTE} '{name}' on {self.label()}",
+            self.key_location(name),
+            expected=expected,
+            hint=hint,
+        )

@@ -12,10 +12,12 @@ from types import FrameType
 
 from launchkit.envvars import AGENT_KEY, ROUTER
 from launchkit.errors import LaunchkitError, RuntimeLaunchError
+from launchkit.remote.agent import Agent
 from launchkit.remote.keys import default_key_path, load_key
 from launchkit.remote.protocol import check_name
 from launchkit.ros.endpoints import router_endpoint
 from launchkit.ros.federation import describe
+from launchkit.ros.router import start_router
 from launchkit.ros_cli.router_options import add_federation_options, federation_options
 
 
@@ -61,9 +63,6 @@ def main(argv: list[str]) -> int:
     key = load_key(key_path, create=True)
     if created:
         _say("info", f"made the agent key {key_path}: copy it to the hosts that launch here")
-
-    from launchkit.remote.agent import Agent
-    from launchkit.ros.router import start_router
 
     router = start_router(endpoint, options=options, report=_say)
     for line in describe(options):

@@ -21,8 +21,7 @@ import threading
 from typing import Any, Protocol
 
 from launchkit.description.process_spec import ProcessSpec
-from launchkit.runtime.lifecycle import Lifecycle, State
-from launchkit.runtime.process import READ_CHUNK, Stream, lifecycle_of, read_stream
+from launchkit.runtime.process import ProcessPipes
 
 LOST = 255  # the exit status of a process whose agent was lost
 KILL_WAIT = 5.0  # seconds to wait for the agent to confirm a SIGKILL
@@ -39,17 +38,12 @@ class Agents(Protocol):
         """Have the agent signal the process's group."""
 
 
-class RemoteProcess:
+class RemoteProcess(ProcessPipes):
     """One process of the launch on host ``spec.machine``, run by its agent."""
 
     def __init__(self, hosts: Agents, spec: ProcessSpec, label: str, index: int) -> None:
-        self.spec = spec
-        self.label = label
-        self.index = index
+        super().__init__(spec, label, index)
         self.machine = spec.machine
-        self.lifecycle: Lifecycle = lifecycle_of(spec)
-        self.pidfd: int | None = None
-        self.streams: dict[int, Stream] = {}
         self.incarnation = 0
         self.instance = ""  # the agent run that runs the current incarnation
         self._hosts = hosts
@@ -65,16 +59,6 @@ class RemoteProcess:
     def pid(self) -> int | None:
         """The current incarnation's pid on its host."""
         return self._pid
-
-    @property
-    def state(self) -> State:
-        """Where the process is in its life."""
-        return self.lifecycle.state
-
-    @property
-    def alive(self) -> bool:
-        """Whether an incarnation is running (or being stopped)."""
-        return self.lifecycle.alive
 
     def spawn(self) -> None:
         """Ask the agent to start a new incarnation; ``OSError`` if it cannot."""
@@ -99,9 +83,8 @@ class RemoteProcess:
                 os.close(fd)
             raise
         self.streams.clear()
-        for fd, kind in ((out_r, "stdout"), (err_r, "stderr")):
-            os.set_blocking(fd, False)
-            self.streams[fd] = Stream(fd, kind)
+        self.add_stream(out_r, "stdout")
+        self.add_stream(err_r, "stderr")
         self.pidfd = exit_r
 
     # -- from the agent (Zenoh threads) ---------------------------------------------------
@@ -145,21 +128,6 @@ class RemoteProcess:
         self._writers = {}
 
     # -- what the supervisor uses -----------------------------------------------------------
-
-    def read(self, fd: int, limit: int = READ_CHUNK) -> tuple[list[str], bool]:
-        """Lines available on ``fd`` (at most ``limit`` bytes read), and whether it ended."""
-        return read_stream(self.streams[fd], limit)
-
-    def close_stream(self, fd: int) -> None:
-        """Forget and close one output stream."""
-        if self.streams.pop(fd, None) is not None:
-            os.close(fd)
-
-    def close_pidfd(self) -> None:
-        """Close the exit notification pipe."""
-        if self.pidfd is not None:
-            os.close(self.pidfd)
-            self.pidfd = None
 
     def poll(self) -> int | None:
         """The exit status, once the agent reported it (or the process was given up)."""

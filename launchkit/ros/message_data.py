@@ -3,14 +3,14 @@ the viewer sends them to its page): rosidl_runtime_py's ``convert`` and ``set_me
 
 from __future__ import annotations
 
+import array
 from typing import Any
 
 import numpy as np
 import yaml
 
 from launchkit.errors import UserError
-from launchkit.ros.msgs import message_type_name
-from launchkit.ros.msgs._typestore import typestore_for
+from launchkit.ros.msgs import get_message, is_message, message_spec, message_type_name
 
 _BASE, _NAME, _ARRAY, _SEQUENCE = 1, 2, 3, 4
 _INTS = {"byte", "char", "int8", "uint8", "int16", "uint16", "int32", "uint32", "int64", "uint64"}
@@ -23,12 +23,16 @@ class MessageValueError(UserError):
 
 def fields_of(type_name: str) -> list[tuple[str, Any]]:
     """(field name, rosbags field description) of a message type, in order."""
-    return list(typestore_for(type_name).fielddefs[type_name][1])
+    return [
+        (field.name, field.desc)
+        for field in message_spec(type_name).fields
+        if field.name != "structure_needs_at_least_one_member"
+    ]
 
 
 def constants_of(type_name: str) -> list[tuple[str, str, Any]]:
     """(name, base type, value) of a message type's constants."""
-    return list(typestore_for(type_name).fielddefs[type_name][0])
+    return [(c.name, c.base, c.value) for c in message_spec(type_name).constants]
 
 
 def to_data(msg: Any, truncate: int | None = TRUNCATE_LENGTH) -> dict[str, Any]:
@@ -40,9 +44,9 @@ def to_data(msg: Any, truncate: int | None = TRUNCATE_LENGTH) -> dict[str, Any]:
 
 
 def _value(value: Any, truncate: int | None) -> Any:
-    if hasattr(value, "__msgtype__"):
+    if is_message(value):
         return to_data(value, truncate)
-    if isinstance(value, np.ndarray):
+    if isinstance(value, (np.ndarray, array.array)):
         value = value.tolist()
     if isinstance(value, list):
         items = [_value(v, truncate) for v in value]
@@ -78,7 +82,7 @@ def from_yaml(type_name: str, text: str) -> Any:
 
 def build(type_name: str, data: Any, path: str) -> Any:
     """A message of ``type_name`` with the fields in the mapping ``data`` set (checked)."""
-    cls = typestore_for(type_name).types[type_name]
+    cls = get_message(type_name)
     if not isinstance(data, dict):
         raise MessageValueError(
             f"{path}: got {data!r}, expected a mapping of {type_name} fields "
@@ -160,9 +164,9 @@ def short_repr(msg: Any) -> str:
     parts = []
     for name, _ in fields_of(type_name):
         value = getattr(msg, name)
-        if hasattr(value, "__msgtype__"):
+        if is_message(value):
             text = short_repr(value)
-        elif isinstance(value, list) and value and hasattr(value[0], "__msgtype__"):
+        elif isinstance(value, list) and value and is_message(value[0]):
             text = "[" + ", ".join(short_repr(v) for v in value) + "]"
         else:
             text = repr(_value(value, None))

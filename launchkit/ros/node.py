@@ -25,6 +25,7 @@ from launchkit.ros.executor import Executor
 from launchkit.ros.guard_condition import GuardCondition
 from launchkit.ros.keyexpr import node_token, topic_key
 from launchkit.ros.logging import RcutilsLogger, apply_log_levels
+from launchkit.ros.namesakes import NamesakeWatch
 from launchkit.ros.node_entities import EntityMethods
 from launchkit.ros.node_graph import GraphQueries
 from launchkit.ros.node_params import ParameterMethods
@@ -122,6 +123,11 @@ class Node(EntityMethods, ParameterMethods, GraphQueries):
             )
         )
         self.context.add_node(self)
+        own = (self._zid, str(self._node_id))
+        namespace, name, warn = self._namespace, self._name, self._logger.warning
+        self._namesakes: NamesakeWatch | None = NamesakeWatch(
+            session, self.context.domain_id, own, namespace, name, warn
+        )
 
         from launchkit.ros.msgs import get_message
 
@@ -354,6 +360,9 @@ class Node(EntityMethods, ParameterMethods, GraphQueries):
             self._rosout.destroy()
             self._rosout = None
         self._parameter_event_publisher = None
+        if self._namesakes is not None:
+            self._namesakes.destroy()
+            self._namesakes = None
         for entity in [*self._publishers, *self._subscriptions, *self._clients, *self._services]:
             entity.destroy()
         for timer in self._timers:

@@ -141,10 +141,8 @@ class Parameter:
         field = _VALUE_FIELDS.get(self.type_)
         if field is not None:
             value = self.value
-            if isinstance(value, (tuple, array.array)):
+            if isinstance(value, tuple):
                 value = list(value)
-            if self.type_ == ParameterType.BYTE_ARRAY:
-                value = [b[0] for b in value]
             setattr(msg, field, value)
         return msg
 

@@ -301,6 +301,29 @@ def as_profile(qos: QoSProfile | int) -> QoSProfile:
     return QoSProfile(depth=qos)
 
 
+def known_profile(depth: int, reliability: int, durability: int, history: int) -> QoSProfile:
+    """A profile from policies given by their rmw numbers, which rclpy's, rosbags' and this
+    module's enums share: best effort, transient local and keep all where they say so, and
+    rmw's defaults (reliable, volatile, keep last) for anything else (system default, unknown,
+    best available).
+
+    The one mapping between launchkit and the libraries that speak rmw's enums (bags, the
+    bridge's rclpy side), in either direction.
+    """
+    return QoSProfile(
+        depth=depth,
+        reliability=ReliabilityPolicy.BEST_EFFORT
+        if reliability == ReliabilityPolicy.BEST_EFFORT
+        else ReliabilityPolicy.RELIABLE,
+        durability=DurabilityPolicy.TRANSIENT_LOCAL
+        if durability == DurabilityPolicy.TRANSIENT_LOCAL
+        else DurabilityPolicy.VOLATILE,
+        history=HistoryPolicy.KEEP_ALL
+        if history == HistoryPolicy.KEEP_ALL
+        else HistoryPolicy.KEEP_LAST,
+    )
+
+
 def _preset(history: int, depth: int, reliability: int, durability: int) -> QoSProfile:
     return QoSProfile(
         history=history,

@@ -12,8 +12,7 @@ import zenoh
 
 from launchkit.ros.keyexpr import decode_attachment, encode_attachment, entity_token, gid_of
 from launchkit.ros.logging import get_logger
-from launchkit.ros.msgs import message_type_name, serialize, type_hash
-from launchkit.ros.msgs._api import deserialize
+from launchkit.ros.msgs import deserialize, message_type_name, serialize, type_hash
 from launchkit.ros.qos import HistoryPolicy, QoSProfile
 from launchkit.ros.task import Future, await_or_execute
 
@@ -179,7 +178,7 @@ class Service(_ServiceEntity):
             return
         try:
             response = await await_or_execute(self.callback, request, self.srv_type.Response())
-            if getattr(response, "__msgtype__", None) != self.type_name + "_Response":
+            if getattr(response, "_TYPE_NAME", None) != self.type_name + "_Response":
                 raise TypeError(
                     f"the callback of service '{self.srv_name}' returned "
                     f"{type(response).__name__}, expected {self.type_name}_Response"
@@ -262,8 +261,11 @@ class Client(_ServiceEntity):
         )
 
     def wait_for_service(self, timeout_sec: float | None = None) -> bool:
-        """Block until a server appears; False after ``timeout_sec``."""
-        return self.node.context.graph.wait_for(self.service_is_ready, timeout_sec)
+        """Block until a server appears; False after ``timeout_sec``, or as soon as the context
+        is no longer ok (a SIGINT or SIGTERM, as rclpy's wait stops)."""
+        context = self.node.context
+        context.graph.wait_for(lambda: self.service_is_ready() or not context.ok(), timeout_sec)
+        return self.service_is_ready()
 
     def call_async(self, request: Any, timeout_sec: float | None = None) -> Future:
         """Send ``request``; the future completes with the response.
@@ -277,7 +279,7 @@ class Client(_ServiceEntity):
             if not isinstance(request, (bytes, bytearray, memoryview)):
                 raise TypeError(f"raw client of '{self.srv_name}' expects bytes")
             payload = bytes(request)
-        elif getattr(request, "__msgtype__", None) != self.type_name + "_Request":
+        elif getattr(request, "_TYPE_NAME", None) != self.type_name + "_Request":
             raise TypeError(
                 f"client of '{self.srv_name}' expects {self.type_name}_Request, "
                 f"got {type(request).__name__}"

@@ -14,8 +14,7 @@ from zenoh import ext
 
 from launchkit.ros.event_handler import MatchedEvent
 from launchkit.ros.keyexpr import decode_attachment, encode_attachment, entity_token, gid_of
-from launchkit.ros.msgs import message_type_name, type_hash
-from launchkit.ros.msgs._codec import codec
+from launchkit.ros.msgs import codec, message_type_name, type_hash
 from launchkit.ros.qos import DurabilityPolicy, HistoryPolicy, QoSProfile, ReliabilityPolicy
 from launchkit.ros.task import await_or_execute
 
@@ -187,7 +186,7 @@ class Publisher(_Entity):
     def publish(self, msg: Any) -> None:
         """Serialize ``msg`` (CDR) and send it with rmw_zenoh's attachment."""
         data: bytes | bytearray
-        if getattr(msg, "__msgtype__", None) == self.type_name:
+        if getattr(msg, "_TYPE_NAME", None) == self.type_name:
             data = self._codec.serialize(msg)  # a bytearray: Zenoh copies it once, as bytes
         elif isinstance(msg, (bytes, bytearray)):
             data = msg

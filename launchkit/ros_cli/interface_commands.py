@@ -6,8 +6,14 @@ import argparse
 from typing import Any
 
 from launchkit.ros.message_data import constants_of, fields_of
-from launchkit.ros.msgs import get_message, get_service, normalize_type_name, type_names
-from launchkit.ros.msgs._api import MessageTypeError
+from launchkit.ros.msgs import (
+    MessageTypeError,
+    get_action,
+    get_message,
+    get_service,
+    normalize_type_name,
+    type_names,
+)
 
 _BASE, _NAME, _ARRAY, _SEQUENCE = 1, 2, 3, 4
 # the member rosidl gives an empty message (std_srvs/srv/Trigger's request); not in its .msg
@@ -16,25 +22,38 @@ _PLACEHOLDER = "structure_needs_at_least_one_member"
 
 def add_parser(commands: Any) -> None:
     """Register the ``interface`` subcommands."""
-    interface = commands.add_parser("interface", help="message and service types: show, list")
+    interface = commands.add_parser(
+        "interface", help="message, service and action types: show, list"
+    )
     sub = interface.add_subparsers(dest="verb", metavar="VERB", required=True)
     p = sub.add_parser("show", help="print a type's definition")
-    p.add_argument("type_name", help="e.g. geometry_msgs/msg/Twist or std_srvs/srv/Trigger")
+    p.add_argument(
+        "type_name",
+        help="e.g. geometry_msgs/msg/Twist, std_srvs/srv/Trigger or "
+        "example_interfaces/action/Fibonacci",
+    )
     p.set_defaults(run=_show)
     p = sub.add_parser("list", help="list every known type")
     p.set_defaults(run=_list)
 
 
 def _list(args: argparse.Namespace) -> int:
-    for kind, title in (("msg", "Messages"), ("srv", "Services")):
+    for kind, title in (("msg", "Messages"), ("srv", "Services"), ("action", "Actions")):
         print(f"{title}:")
-        for name in type_names(kind):
+        for name in type_names(kind, discover=True):
             print(f"    {name}")
     return 0
 
 
 def _show(args: argparse.Namespace) -> int:
     text = args.type_name
+    if "/action/" in text.replace("::", "/"):
+        action = get_action(text)
+        for part in ("_Goal", "_Result", "_Feedback"):
+            if part != "_Goal":
+                print("---")
+            _print_lines(definition(action._TYPE_NAME + part))
+        return 0
     if "/srv/" in text.replace("::", "/"):
         srv = get_service(text)
         _print_lines(definition(srv._TYPE_NAME + "_Request"))
@@ -55,7 +74,7 @@ def _show(args: argparse.Namespace) -> int:
             args.type_name = srv._TYPE_NAME
             return _show(args)
         raise
-    _print_lines(definition(cls.__msgtype__))
+    _print_lines(definition(cls._TYPE_NAME))
     return 0
 
 

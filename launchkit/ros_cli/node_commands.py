@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import argparse
+import sys
 from typing import Any
 
 from launchkit.ros_cli.common import (
@@ -28,8 +29,15 @@ def add_parser(commands: Any) -> None:
 
 
 def _list(args: argparse.Namespace) -> int:
-    tokens = graph_once(args)
-    names = sorted({t.node_fqn for t in tokens if t.kind == "NN" and visible(t, args.all)})
+    # one line per node, as ros2 node list: two nodes of one name are two lines and a warning
+    names = sorted(t.node_fqn for t in graph_once(args) if t.kind == "NN" and visible(t, args.all))
+    if len(set(names)) < len(names):
+        twice = sorted({name for name in names if names.count(name) > 1})
+        print(
+            f"WARNING: more than one node in the graph is named {', '.join(twice)}: tools reach "
+            "only one of them, and they share parameters and logs",
+            file=sys.stderr,
+        )
     for name in names:
         print(name)
     return 0
@@ -46,9 +54,16 @@ _SECTIONS = (
 def _info(args: argparse.Namespace) -> int:
     wanted = args.node_name if args.node_name.startswith("/") else "/" + args.node_name
     tokens = [t for t in graph_once(args) if t.node_fqn == wanted]
-    if not any(t.kind == "NN" for t in tokens):
+    count = sum(t.kind == "NN" for t in tokens)
+    if not count:
         raise CliUsageError(
             f"unknown node {wanted}", expected="a node listed by `launchkit node list`"
+        )
+    if count > 1:
+        print(
+            f"WARNING: {count} nodes in the graph are named {wanted}: what follows is all of "
+            "theirs together",
+            file=sys.stderr,
         )
     print(wanted)
     for title, kind in _SECTIONS:

@@ -180,7 +180,7 @@ def _pub(args: argparse.Namespace) -> int:
 
     topic = normalize_topic(args.topic_name)
     msg_class = get_message(args.message_type)
-    msg = from_yaml(msg_class.__msgtype__, args.values)
+    msg = from_yaml(msg_class._TYPE_NAME, args.values)
     if args.rate <= 0:
         raise CliUsageError(
             f"invalid rate {args.rate}", expected="a rate > 0 (messages per second)"

@@ -30,7 +30,6 @@ from typing import Any, Protocol
 
 from launchkit.description.process_spec import OUTPUT_MODES, ProcessSpec
 from launchkit.envvars import SUPERVISOR_SOCKET
-from launchkit.runtime.child_host import RequestError
 from launchkit.runtime.lifecycle import State
 from launchkit.runtime.process import SupervisedProcess
 from launchkit.runtime.supervisor_client import MAX_PACKET
@@ -43,15 +42,15 @@ MAX_CONNECTIONS = 256
 MAX_REFUSED = 16
 
 
+class RequestError(Exception):
+    """A request that cannot be served; its message is the error reply."""
+
+
 class ChildHost(Protocol):
     """What the requests need from the supervisor."""
 
     def owner_of(self, pid: int) -> SupervisedProcess | None:
         """The running process of the launch whose session ``pid`` is in."""
-
-    def owner_of_forked(self, pid: int) -> SupervisedProcess | None:
-        """The running process of the launch that stands for node ``pid`` forked from the
-        launcher's node host (the node leads a session of its own)."""
 
     def start_child(self, spec: ProcessSpec, owner: SupervisedProcess) -> SupervisedProcess:
         """Start ``spec`` for ``owner`` now; :class:`RequestError` if it cannot be."""
@@ -61,6 +60,9 @@ class ChildHost(Protocol):
 
     def log(self, level: str, logger: str, message: str) -> None:
         """A launch line."""
+
+    def announce(self, logger: str, text: str) -> None:
+        """A line for the user under ``logger``, printed once the launch's console settles."""
 
 
 class _Connection:
@@ -123,7 +125,7 @@ class ChildRequests:
         try:
             credentials = sock.getsockopt(socket.SOL_SOCKET, socket.SO_PEERCRED, _UCRED.size)
             pid = _UCRED.unpack(credentials)[0]
-            owner = self._host.owner_of(os.getsid(pid)) or self._host.owner_of_forked(pid)
+            owner = self._host.owner_of(os.getsid(pid))
         except OSError:
             owner = None  # it is gone already
         if owner is None:
@@ -209,7 +211,7 @@ class ChildRequests:
                 raise RequestError('an announce request is {"op": "announce", "text": TEXT}')
             if not text or len(text) > 500 or not text.isprintable():
                 raise RequestError("text must be one printable line of at most 500 characters")
-            self._host.log("INFO", owner.label, text)
+            self._host.announce(owner.label, text)
             return {}
         raise RequestError(f"unknown op {op!r} (expected 'start', 'stop' or 'announce')")
 

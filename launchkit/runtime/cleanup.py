@@ -12,6 +12,7 @@ from __future__ import annotations
 
 import shutil
 import signal
+import tempfile
 
 from launchkit.runtime.orphan_guard import OrphanGuard
 from launchkit.runtime.process import SupervisedProcess, kill_group
@@ -27,8 +28,6 @@ class LaunchCleanup:
 
     def open_folder(self) -> str:
         """Create the run folder; the guard removes it should the launcher die."""
-        import tempfile  # with random and hashlib: for a launch that starts something
-
         self.folder = tempfile.mkdtemp(prefix="launchkit-")
         self._guard.remove_on_death(self.folder)
         return self.folder

@@ -19,6 +19,7 @@ from launchkit.runtime.logfiles import RunLogs
 
 _LEVEL_COLOURS = {"ERROR": "\033[31m", "WARNING": "\033[33m", "DEBUG": "\033[2m"}
 _NAME_COLOURS = ["\033[36m", "\033[32m", "\033[35m", "\033[34m", "\033[33m", "\033[96m"]
+_BOLD = "\033[1m"
 _RESET = "\033[0m"
 _LAUNCH_LOG = "launch.log"
 
@@ -31,14 +32,18 @@ class Output:
         self.colour = self.stream.isatty() if colour is None else colour
         self.run_dir: Path | None = None
         self._logs: RunLogs | None = None
+        self.screen_writes = 0  # how many times lines went to the screen
 
     def open_logs(self, run_dir: Path, limits: LogLimits | None = None) -> None:
         """Start writing ``launch.log`` (and own logs) in ``run_dir``, within ``limits``."""
         self.run_dir = run_dir
         self._logs = RunLogs(run_dir, limits or LogLimits())
 
-    def launch_line(self, level: str, logger: str, message: str, *, screen: bool = True) -> None:
-        """``[LEVEL] [logger]: message`` to the screen (unless not ``screen``) and launch.log."""
+    def launch_line(
+        self, level: str, logger: str, message: str, *, screen: bool = True, bold: bool = False
+    ) -> None:
+        """``[LEVEL] [logger]: message`` to the screen (unless not ``screen``; in bold on a
+        terminal if ``bold``) and launch.log."""
         text = printable(f"[{level}] [{logger}]: {message}")
         if self._logs is not None:
             self._logs.write(_LAUNCH_LOG, [text], child=False)
@@ -46,6 +51,8 @@ class Output:
             return
         if self.colour and level in _LEVEL_COLOURS:
             text = f"{_LEVEL_COLOURS[level]}{text}{_RESET}"
+        elif self.colour and bold:
+            text = f"{_BOLD}{text}{_RESET}"
         self._write([text])
 
     def child_lines(self, label: str, index: int, lines: list[str], mode: str, stream: str) -> None:
@@ -70,6 +77,7 @@ class Output:
             self._logs.write(f"{label}-{stream}.log", lines, child=True)
 
     def _write(self, lines: list[str]) -> None:
+        self.screen_writes += 1
         try:
             self.stream.write("".join(line + "\n" for line in lines))
             self.stream.flush()

@@ -14,6 +14,7 @@ from __future__ import annotations
 
 import errno
 import os
+import pty
 import shutil
 import signal
 import subprocess
@@ -123,34 +124,19 @@ def by_machine(local: ProcessFactory, remote: ProcessFactory | None) -> ProcessF
     return make
 
 
-class ManagedProcess:
-    """A real process the supervisor owns: its spec, its current incarnation, its lifecycle.
-    ``on_spawn`` is told each new process group (the orphan guard watches them);
-    ``command`` says what to run for the spec's command line (a trampoline for a node forked
-    from the launcher's node host, :mod:`launchkit.runtime.node_host`)."""
+class ProcessPipes:
+    """What the supervisor reads of any process it supervises, here or on another host
+    (:class:`ManagedProcess`, :class:`launchkit.remote.remote_process.RemoteProcess`): its
+    spec, label and lifecycle, its output streams (non-blocking fds read line by line) and the
+    fd that becomes readable when it exits (``pidfd``)."""
 
-    def __init__(
-        self,
-        spec: ProcessSpec,
-        label: str,
-        index: int,
-        on_spawn: Callable[[int], None] = lambda _pgid: None,
-        command: Callable[[list[str], ProcessSpec], list[str]] = lambda cmd, _spec: cmd,
-    ) -> None:
+    def __init__(self, spec: ProcessSpec, label: str, index: int) -> None:
         self.spec = spec
         self.label = label
         self.index = index
-        self.on_spawn = on_spawn
-        self.command = command
         self.lifecycle = lifecycle_of(spec)
-        self.popen: subprocess.Popen[bytes] | None = None
         self.pidfd: int | None = None
         self.streams: dict[int, Stream] = {}
-
-    @property
-    def pid(self) -> int | None:
-        """The current incarnation's pid."""
-        return self.popen.pid if self.popen is not None else None
 
     @property
     def state(self) -> State:
@@ -162,13 +148,71 @@ class ManagedProcess:
         """Whether an incarnation is running (or being stopped)."""
         return self.lifecycle.alive
 
+    def add_stream(self, fd: int, kind: str) -> None:
+        """Follow ``fd`` (made non-blocking) as the process's ``kind`` output."""
+        os.set_blocking(fd, False)
+        self.streams[fd] = Stream(fd, kind)
+
+    def read(self, fd: int, limit: int = READ_CHUNK) -> tuple[list[str], bool]:
+        """Read what is available on ``fd``, at most ``limit`` bytes (so that a flood cannot
+        hold the loop): the lines it completes (bounded and split by the stream's
+        :class:`LineBuffer`), and whether the stream ended."""
+        stream = self.streams[fd]
+        lines: list[str] = []
+        taken = 0
+        while taken < limit:
+            try:
+                chunk = os.read(fd, min(READ_CHUNK, limit - taken))
+            except BlockingIOError:
+                return lines, False
+            except OSError as error:
+                if error.errno != errno.EIO:  # EIO: the pty's other side closed
+                    raise
+                chunk = b""
+            if not chunk:
+                lines.extend(stream.lines.finish())
+                return lines, True
+            taken += len(chunk)
+            lines.extend(stream.lines.feed(chunk))
+        return lines, False
+
+    def close_stream(self, fd: int) -> None:
+        """Forget and close one stream."""
+        if self.streams.pop(fd, None) is not None:
+            os.close(fd)
+
+    def close_pidfd(self) -> None:
+        """Close the exit notification fd."""
+        if self.pidfd is not None:
+            os.close(self.pidfd)
+            self.pidfd = None
+
+
+class ManagedProcess(ProcessPipes):
+    """A real process the supervisor owns: its spec, its current incarnation, its lifecycle.
+    ``on_spawn`` is told each new process group (the orphan guard watches them)."""
+
+    def __init__(
+        self,
+        spec: ProcessSpec,
+        label: str,
+        index: int,
+        on_spawn: Callable[[int], None] = lambda _pgid: None,
+    ) -> None:
+        super().__init__(spec, label, index)
+        self.on_spawn = on_spawn
+        self.popen: subprocess.Popen[bytes] | None = None
+
+    @property
+    def pid(self) -> int | None:
+        """The current incarnation's pid."""
+        return self.popen.pid if self.popen is not None else None
+
     def spawn(self) -> None:
         """Start the process in a new session (so its own process group); raises OSError.
         Streams of an earlier incarnation that a grandchild still holds stay until their end."""
         spec = self.spec
         if spec.emulate_tty:
-            import pty  # with tty and termios: only for emulate_tty
-
             out_r, out_w = pty.openpty()
             err_r, err_w = None, out_w
         else:
@@ -177,7 +221,7 @@ class ManagedProcess:
         gate_r, gate_w = os.pipe()
         try:
             self.popen = subprocess.Popen(
-                ["/bin/sh", "-c", _GATE, *self.command(spec.cmd, spec)],
+                ["/bin/sh", "-c", _GATE, *spec.cmd],
                 cwd=spec.cwd or None,
                 env=spec.env,
                 stdin=gate_r,
@@ -197,34 +241,14 @@ class ManagedProcess:
                     os.close(fd)
                 except OSError:
                     pass
-        self._add_stream(out_r, "stdout")
+        self.add_stream(out_r, "stdout")
         if err_r is not None:
-            self._add_stream(err_r, "stderr")
+            self.add_stream(err_r, "stderr")
         self.pidfd = _pidfd_open(self.popen.pid)
         try:
             self.on_spawn(self.popen.pid)
         finally:
             _open_gate(gate_w)
-
-    def _add_stream(self, fd: int, kind: str) -> None:
-        os.set_blocking(fd, False)
-        self.streams[fd] = Stream(fd, kind)
-
-    def read(self, fd: int, limit: int = READ_CHUNK) -> tuple[list[str], bool]:
-        """Read what is available on ``fd``, at most ``limit`` bytes (so that a flood cannot
-        hold the loop): the lines it completes, and whether the stream ended."""
-        return read_stream(self.streams[fd], limit)
-
-    def close_stream(self, fd: int) -> None:
-        """Forget and close one stream."""
-        if self.streams.pop(fd, None) is not None:
-            os.close(fd)
-
-    def close_pidfd(self) -> None:
-        """Close the exit notification fd."""
-        if self.pidfd is not None:
-            os.close(self.pidfd)
-            self.pidfd = None
 
     def poll(self) -> int | None:
         """Reap the process if it exited; its return code (negative: killed by a signal)."""
@@ -330,25 +354,3 @@ def describe_exit(code: int) -> str:
         except ValueError:
             return f"signal {-code}"
     return f"exit code {code}"
-
-
-def read_stream(stream: Stream, limit: int = READ_CHUNK) -> tuple[list[str], bool]:
-    """Read what is available on ``stream``'s non-blocking fd, at most ``limit`` bytes: the
-    lines it completes (bounded and split by its :class:`LineBuffer`), and whether it ended."""
-    lines: list[str] = []
-    taken = 0
-    while taken < limit:
-        try:
-            chunk = os.read(stream.fd, min(READ_CHUNK, limit - taken))
-        except BlockingIOError:
-            return lines, False
-        except OSError as error:
-            if error.errno != errno.EIO:  # EIO: the pty's other side closed
-                raise
-            chunk = b""
-        if not chunk:
-            lines.extend(stream.lines.finish())
-            return lines, True
-        taken += len(chunk)
-        lines.extend(stream.lines.feed(chunk))
-    return lines, False

@@ -31,18 +31,19 @@ from launchkit.description.process_spec import ProcessSpec
 from launchkit.envvars import RUN_TMPDIR
 from launchkit.errors import LaunchkitError
 from launchkit.ros.face import child_environment
-from launchkit.runtime.child_host import ChildHostMixin
+from launchkit.runtime.announcements import Announcements
+from launchkit.runtime.child_requests import ChildRequests, RequestError
 from launchkit.runtime.cleanup import LaunchCleanup
 from launchkit.runtime.hooks import SupervisorHooks
 from launchkit.runtime.launch_events import EventRelay
 from launchkit.runtime.lifecycle import Respawn, SendSignal, State
-from launchkit.runtime.node_host import NodeHost
 from launchkit.runtime.output import Output
 from launchkit.runtime.process import (
     ManagedProcess,
     ProcessFactory,
     SupervisedProcess,
     by_machine,
+    check_program,
     check_programs,
 )
 from launchkit.runtime.process_io import POLL_INTERVAL, ProcessIO
@@ -58,13 +59,12 @@ from launchkit.runtime.timers import TimerQueue
 if TYPE_CHECKING:
     from launchkit.description.launch_context import DelayedActions, LaunchContext, Snapshot
     from launchkit.description.launch_description import LaunchDescription
-    from launchkit.runtime.child_requests import ChildRequests
     from launchkit.runtime.network import NodeNetwork
 
 
-class Supervisor(ChildHostMixin):
-    """Runs a launch description and supervises what it starts (the :class:`Runner`; the
-    processes started on request are in :class:`ChildHostMixin`)."""
+class Supervisor:
+    """Runs a launch description and supervises what it starts (the :class:`Runner`), and
+    the processes its processes ask for (the ``ChildHost`` of the child-request socket)."""
 
     def __init__(
         self,
@@ -86,6 +86,7 @@ class Supervisor(ChildHostMixin):
         self._context: LaunchContext | None = None
         self._pending: list[ProcessSpec] | None = None
         self._timers = TimerQueue()
+        self._announcements = Announcements(output)
         self._interrupts = 0
         self._cleanup = LaunchCleanup()
         self._selector = selectors.DefaultSelector()
@@ -93,12 +94,8 @@ class Supervisor(ChildHostMixin):
         self._io = ProcessIO(self._selector, output, self.hooks, self._on_exit)
         self._report = ProcessReport(output, self.hooks)
         self._requests: ChildRequests | None = None
-        cleanup = self._cleanup
-        self._node_host = NodeHost(self.log, self._folder, cleanup.watch, cleanup.forget)
         local = process_factory or (
-            lambda spec, label, index: ManagedProcess(
-                spec, label, index, self._cleanup.watch, self._node_host.command
-            )
+            lambda spec, label, index: ManagedProcess(spec, label, index, self._cleanup.watch)
         )
         # processes for another host (spec.machine) are run by its agent (launchkit.remote)
         self._new_process = by_machine(local, remote_factory)
@@ -109,7 +106,6 @@ class Supervisor(ChildHostMixin):
         """Start ``spec`` now, or after the first pass when the launch is starting up."""
         if self._pending is not None:
             self._pending.append(spec)
-            self._node_host.expect(spec)  # it imports while the launch is evaluated
         elif self.shutting_down:
             self.log("WARNING", "launch", f"not starting '{spec.name}': shutting down")
         else:
@@ -128,6 +124,10 @@ class Supervisor(ChildHostMixin):
     def log(self, level: str, logger: str, message: str) -> None:
         """A launch line."""
         self.output.launch_line(level, logger, message)
+
+    def announce(self, logger: str, text: str) -> None:
+        """A line for the user (``{"op": "announce"}``), held until the console settles."""
+        self._announcements.hold(logger, text, self.clock())
 
     def stop_processes(self, matcher: Callable[[object], bool], signum: int | None) -> None:
         """ShutdownProcess (``signum`` None) / SignalProcess for the matching processes."""
@@ -171,8 +171,6 @@ class Supervisor(ChildHostMixin):
         return Path(folder)
 
     def _open_requests(self, folder: str) -> None:
-        from launchkit.runtime.child_requests import ChildRequests  # json, socket, struct
-
         try:
             self._requests = ChildRequests(self, self._selector, folder)
         except OSError as error:
@@ -228,7 +226,8 @@ class Supervisor(ChildHostMixin):
         return not self._timers
 
     def _timeout(self) -> float | None:
-        candidates = [self._timers.next_due(), *(p.lifecycle.deadline for p in self.processes)]
+        lifecycles = (p.lifecycle.deadline for p in self.processes)
+        candidates = [self._timers.next_due(), self._announcements.deadline(), *lifecycles]
         deadlines = [d for d in candidates if d is not None]
         timeout = max(0.0, min(deadlines) - self.clock()) if deadlines else None
         if self._io.needs_polling:
@@ -245,6 +244,7 @@ class Supervisor(ChildHostMixin):
                 self._spawn(process)
             elif effect is not None:
                 self._send(process, effect)
+        self._announcements.print_due(now, self.shutting_down)
 
     def _fire(self, timer: DelayedActions, snapshot: Snapshot) -> None:
         context = self._context
@@ -287,7 +287,6 @@ class Supervisor(ChildHostMixin):
         if self._requests is not None:
             spec.env.update(self._requests.environment())
         spec.env[RUN_TMPDIR] = str(folder)
-        self._node_host.expect(spec)
         index = len(self.processes) + 1
         return self._new_process(spec, f"{spec.name}-{index}", index)
 
@@ -329,6 +328,39 @@ class Supervisor(ChildHostMixin):
             )
         else:
             self._report.respawn(process, outcome)
+
+    # -- processes started at a process's request (the child-request socket's ChildHost) -----
+
+    def owner_of(self, pid: int) -> SupervisedProcess | None:
+        """The running process of the launch whose pid (and so session) is ``pid``."""
+        return next((p for p in self.processes if p.alive and p.pid == pid), None)
+
+    def start_child(self, spec: ProcessSpec, owner: SupervisedProcess) -> SupervisedProcess:
+        """Start ``spec`` at ``owner``'s request; :class:`RequestError` if it cannot start
+        (a refused request never stops the launch)."""
+        if self.shutting_down:
+            raise RequestError("the launch is shutting down")
+        try:
+            check_program(spec)
+        except LaunchkitError as error:
+            raise RequestError(error.message) from None
+        process = self._managed(spec)
+        try:
+            process.spawn()
+        except OSError as error:
+            raise RequestError(f"could not start '{spec.cmd[0]}': {error.strerror}") from None
+        process.lifecycle.started(self.clock())
+        self.processes.append(process)
+        self.log("INFO", process.label, f"started at the request of {owner.label}")
+        self._watch(process)
+        return process
+
+    def stop_child(self, process: SupervisedProcess) -> None:
+        """Stop a process started on request, as a shutdown would, and never respawn it."""
+        effect = process.lifecycle.stop(self.clock(), retire=True)
+        if effect is not None:
+            self.hooks.process_stopping(process)
+            self._send(process, effect)
 
     # -- shutdown ----------------------------------------------------------------------------
 
@@ -389,7 +421,6 @@ class Supervisor(ChildHostMixin):
         if self._requests is not None:
             self._requests.close()
             self._requests = None
-        self._node_host.close()
         if self.network is not None:
             self.network.close()
         if self._context is not None:

@@ -21,7 +21,7 @@ from typing import Any
 from lxml import etree
 
 from launchkit.errors import Location, UserError
-from launchkit.stock.rotations import (
+from launchkit.rotations import (
     Quaternion,
     Vector,
     axis_angle,

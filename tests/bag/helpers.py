@@ -3,6 +3,7 @@ message samples filled from the type definitions, and waits with deadlines."""
 
 from __future__ import annotations
 
+import array
 import os
 import signal
 import socket
@@ -18,8 +19,8 @@ from typing import Any
 import numpy as np
 
 import launchkit.ros as ros
-from launchkit.ros.msgs import get_message
-from launchkit.ros.msgs._typestore import typestore
+from launchkit.ros.message_data import fields_of
+from launchkit.ros.msgs import get_message, is_message
 
 _BASE, _NAME, _ARRAY, _SEQUENCE = 1, 2, 3, 4
 _INT_RANGES = {
@@ -178,7 +179,7 @@ def probe(router: str, name: str = "bag_probe", **node_args: Any) -> Iterator[Pr
 
 def sample(type_name: str, seed: int = 1) -> Any:
     """A message of ``type_name`` with every field set to a value other than its default."""
-    _, fields = typestore().fielddefs[type_name]
+    fields = fields_of(type_name)
     cls = get_message(type_name)
     values = {name: _value(desc, seed + i) for i, (name, desc) in enumerate(fields)}
     return cls(**values)
@@ -192,10 +193,7 @@ def _value(desc: Any, seed: int) -> Any:
         return sample(detail, seed)
     sub, length = detail
     count = length if kind == _ARRAY else min(length or 2, 2)
-    items = [_value(sub, seed + i) for i in range(count)]
-    if sub[0] == _BASE and sub[1][0] not in ("string", "wstring"):
-        return np.array(items, dtype=_dtype(sub[1][0]))
-    return items
+    return [_value(sub, seed + i) for i in range(count)]
 
 
 def _base(name: str, bound: int, seed: int) -> Any:
@@ -204,30 +202,24 @@ def _base(name: str, bound: int, seed: int) -> Any:
         return text[:bound] if bound else text
     if name == "bool":
         return True
+    if name == "byte":
+        return bytes([seed % 128])
     if name in ("float32", "float64"):
         return 0.5 + seed * 0.25  # exact in float32
     low, high = _INT_RANGES[name]
     return low + (seed * 37 + 3) % (high - low)
 
 
-def _dtype(name: str) -> Any:
-    return {
-        "bool": np.bool_,
-        "byte": np.uint8,
-        "char": np.uint8,
-        "float32": np.float32,
-        "float64": np.float64,
-    }.get(name, getattr(np, name, None))
-
-
 def same(a: Any, b: Any) -> bool:
-    """Field-by-field equality of decoded messages (numpy arrays compared by value)."""
-    if isinstance(a, np.ndarray) or isinstance(b, np.ndarray):
+    """Field-by-field equality of decoded messages (arrays compared by value, element by
+    element: a message's own ``==`` is rosidl's, which calls fixed-size arrays equal unless
+    every element differs)."""
+    if isinstance(a, (np.ndarray, array.array)) or isinstance(b, (np.ndarray, array.array)):
         return bool(np.array_equal(np.asarray(a), np.asarray(b)))
     if isinstance(a, (list, tuple)) and isinstance(b, (list, tuple)):
         return len(a) == len(b) and all(same(x, y) for x, y in zip(a, b, strict=True))
-    if hasattr(a, "__dataclass_fields__"):
-        return type(a).__name__ == type(b).__name__ and all(
-            same(getattr(a, f), getattr(b, f)) for f in a.__dataclass_fields__
+    if is_message(a):
+        return type(a) is type(b) and all(
+            same(getattr(a, f), getattr(b, f)) for f in a.get_fields_and_field_types()
         )
     return bool(a == b)

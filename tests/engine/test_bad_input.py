@@ -152,8 +152,8 @@ def test_choice_violation(with_args: Path) -> None:
 def test_malformed_command_line_argument(with_args: Path) -> None:
     result = launchkit("run", str(with_args), "robot=r", cwd=with_args.parent)
     assert result.returncode == 2
-    assert "malformed launch argument 'robot=r'" in result.stderr
-    assert "NAME:=VALUE" in result.stderr
+    assert "'robot=r' is not a launch argument assignment (expected NAME:=VALUE)" in result.stderr
+    assert "did you mean 'robot:=r'?" in result.stderr
     assert not (with_args.parent / "started").exists()
 
 

@@ -157,22 +157,31 @@ for text in ("two\\nlines", "", "x" * 501):
     except SupervisorError as error:
         print("refused:", error, file=sys.stderr, flush=True)
 print("announced on stdout", flush=True)
+for i in range(30):  # the rest of a bring-up's messages, after the announcement
+    print("start-up message", i, file=sys.stderr, flush=True)
 print("announcer done", file=sys.stderr, flush=True)
 time.sleep(300)
 """
+BANNER = "[INFO] [announcer-1]: viewer: http://127.0.0.1:1/"
 
 
-def test_an_announcement_reaches_the_console_whatever_the_output_mode(run, tmp_path) -> None:  # type: ignore[no-untyped-def]
+def test_an_announcement_is_the_last_line_of_the_bring_up_whatever_the_output_mode(  # type: ignore[no-untyped-def]
+    run, tmp_path
+) -> None:
     script = tmp_path / "announcer.py"
     script.write_text(ANNOUNCER)
     launcher = run(f'<executable name="announcer" output="log" cmd="{sys.executable} {script}"/>')
-    launcher.wait_line("[announcer-1] announcer done")
-    assert "[INFO] [announcer-1]: viewer: http://127.0.0.1:1/" in launcher.lines
+    launcher.wait_line(BANNER)
+    # held until the console settled: after every line the bring-up printed, plain (no TTY)
+    assert launcher.lines.index(BANNER) > launcher.lines.index("[announcer-1] announcer done")
+    assert "\033" not in launcher.text
     refusals = [line.split("refused: ", 1)[1] for line in launcher.lines if "refused: " in line]
     assert refusals == ["text must be one printable line of at most 500 characters"] * 3
     assert "announced on stdout" not in launcher.text  # output="log": stdout is not shown
     launcher.signal(signal.SIGINT)
     assert launcher.finish() == 0
+    after = launcher.lines[launcher.lines.index(BANNER) + 1]
+    assert after.startswith("[WARNING] [launch]: user interrupted"), launcher.text
 
 
 def test_a_requested_child_is_a_process_of_the_launch_for_the_plugin(launch, tmp_path) -> None:  # type: ignore[no-untyped-def]

@@ -164,6 +164,23 @@ def test_run_pkg_executable_says_to_use_exec(tmp_path: Path) -> None:
 
 
 @pytest.mark.parametrize(
+    "target", [["gazebo_and_rviz.launch.xml"], ["robot_wheel", "gazebo_and_rviz.launch.xml"]]
+)
+def test_an_argument_without_assignment_is_said_to_be_one(
+    tmp_path: Path, target: list[str]
+) -> None:
+    # the file is found in the robot package's launch folders, not in the working folder
+    result = launchkit("run", *target, "world", cwd=tmp_path)
+    assert result.returncode == 2
+    assert result.stderr == (
+        "error: 'world' is not a launch argument assignment (expected NAME:=VALUE)\n"
+    )
+    result = launchkit("run", *target, "world=obstacles", cwd=tmp_path)
+    assert result.returncode == 2
+    assert result.stderr.endswith("  hint: did you mean 'world:=obstacles'?\n")
+
+
+@pytest.mark.parametrize(
     ("argv", "usage"),
     [
         (["run", "--bogus", "a.launch.xml"], "usage: launchkit run "),

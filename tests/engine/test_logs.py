@@ -78,5 +78,6 @@ def test_a_run_rejected_before_starting_has_its_log_folder(tmp_path: Path) -> No
     assert (latest / RUN_MARKER).exists(), "as ros2 launch: a run folder even for a bad file"
     log = (latest / "launch.log").read_text()
     assert f"{path}:2:" in log and "unknown tag <nod>" in log
-    assert result.stderr.count("\n") == 1 and "unknown tag <nod>" in result.stderr
+    error, hint = result.stderr.splitlines()
+    assert "unknown tag <nod>" in error and hint == "  hint: did you mean 'node'?"
     assert os.readlink(latest) == latest.resolve().name

@@ -73,20 +73,6 @@ def test_an_empty_launch_creates_no_dataclasses(tmp_path: Path) -> None:
     assert loaded_by("run", str(yaml), prefixes=("dataclasses", "inspect")) == ["yaml"]
 
 
-def test_a_launch_that_starts_nothing_opens_no_socket_or_run_folder(tmp_path: Path) -> None:
-    # The private run folder (and the orphan guard told about it) and the child-request
-    # socket are made when the first process starts; $(anon) imports socket when used.
-    launch = tmp_path / "empty.launch.xml"
-    launch.write_text(
-        "<launch><let name='a' value='$(var b)'/><arg name='b' default='1'/></launch>\n"
-    )
-    unused = ("socket", "tempfile", "launchkit.runtime.child_requests")
-    assert loaded_by("run", str(launch), prefixes=unused) == []
-    started = tmp_path / "one.launch.xml"
-    started.write_text("<launch><executable cmd='true'/></launch>\n")
-    assert "launchkit.runtime.child_requests" in loaded_by("run", str(started), prefixes=unused)
-
-
 def description_modules(tmp_path: Path, text: str) -> set[str]:
     """The description and tag modules ``launchkit run`` of an XML file ``text`` imported."""
     launch = tmp_path / "file.launch.xml"

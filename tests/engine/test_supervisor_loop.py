@@ -9,63 +9,46 @@ import errno
 import io
 import signal
 from collections.abc import Iterator
-from dataclasses import dataclass, field
+from dataclasses import dataclass
 
 import pytest
 
 from launchkit.description.process_spec import ProcessSpec
-from launchkit.runtime.lifecycle import Lifecycle, State
+from launchkit.runtime.lifecycle import State
 from launchkit.runtime.output import Output
-from launchkit.runtime.process import Stream, lifecycle_of
+from launchkit.runtime.process import ProcessPipes
 from launchkit.runtime.supervisor import Supervisor
 
 
-@dataclass
-class FakeProcess:
+class FakeProcess(ProcessPipes):
     """A process that exists only here: it exits when the test says so, or on a signal it
-    does not ignore. Its pids are made up and never signalled for real."""
+    does not ignore. Its pids are made up and never signalled for real; it has no streams and
+    no pidfd (the loop polls it)."""
 
-    spec: ProcessSpec
-    label: str
-    index: int
-    ignores: tuple[int, ...] = ()
-    refuses_to_start: bool = False
-    lifecycle: Lifecycle = field(init=False)
-    pidfd: int | None = None
-    streams: dict[int, Stream] = field(default_factory=dict)
-    incarnations: int = 0
-    received: list[int] = field(default_factory=list)
-    code: int | None = None
-
-    def __post_init__(self) -> None:
-        self.lifecycle = lifecycle_of(self.spec)
+    def __init__(
+        self,
+        spec: ProcessSpec,
+        label: str,
+        index: int,
+        ignores: tuple[int, ...] = (),
+        refuses_to_start: bool = False,
+    ) -> None:
+        super().__init__(spec, label, index)
+        self.ignores = ignores
+        self.refuses_to_start = refuses_to_start
+        self.incarnations = 0
+        self.received: list[int] = []
+        self.code: int | None = None
 
     @property
     def pid(self) -> int:
         return 900_000 + 100 * self.index + self.incarnations
-
-    @property
-    def state(self) -> State:
-        return self.lifecycle.state
-
-    @property
-    def alive(self) -> bool:
-        return self.lifecycle.alive
 
     def spawn(self) -> None:
         if self.refuses_to_start:
             raise OSError(errno.ENOENT, "No such file or directory")
         self.incarnations += 1
         self.code = None
-
-    def read(self, fd: int, limit: int = 0) -> tuple[list[str], bool]:
-        raise AssertionError("a fake process has no streams")
-
-    def close_stream(self, fd: int) -> None:
-        raise AssertionError("a fake process has no streams")
-
-    def close_pidfd(self) -> None:
-        pass
 
     def poll(self) -> int | None:
         return self.code

@@ -2,7 +2,8 @@
 
 from __future__ import annotations
 
-import numpy as np
+import array
+
 import pytest
 
 from launchkit.errors import UserError
@@ -23,7 +24,7 @@ def test_numeric_sequences_accept_lists() -> None:
 
     msg = JointState(name=["a", "b"], position=[1.0, 2.0])
     msg.velocity = [3, 4]
-    assert isinstance(msg.velocity, np.ndarray) and msg.velocity.dtype == np.float64
+    assert isinstance(msg.velocity, array.array) and msg.velocity.typecode == "d"
     back = deserialize(serialize(msg), "sensor_msgs/msg/JointState")
     assert back.name == ["a", "b"] and list(back.velocity) == [3.0, 4.0]
 
@@ -80,3 +81,14 @@ def test_packages_import_like_rclpy() -> None:
     assert Clock().clock.sec == 0
     with pytest.raises(ImportError):
         __import__("launchkit.ros.msgs.nope_msgs.msg")
+
+
+def test_an_action_feedback_topic_has_a_message_definition() -> None:
+    from rosbags.typesys import get_types_from_msg
+
+    from launchkit.ros.msgs import message_definition
+
+    name = "example_interfaces/action/Fibonacci_FeedbackMessage"
+    types = get_types_from_msg(message_definition(name), "example_interfaces/msg/Feedback")
+    assert [f for f, _ in types["example_interfaces/msg/Feedback"][1]] == ["goal_id", "feedback"]
+    assert "unique_identifier_msgs/msg/UUID" in types

@@ -15,8 +15,7 @@ from typing import Any
 import pytest
 
 from launchkit.ros.message_data import fields_of
-from launchkit.ros.msgs import deserialize, get_message, serialize, type_hash
-from launchkit.ros.msgs._typestore import typestore
+from launchkit.ros.msgs import deserialize, get_message, serialize, type_hash, type_names
 
 try:
     from rclpy.serialization import deserialize_message, serialize_message
@@ -84,8 +83,8 @@ def _value(desc: Any, seed: int) -> Any:
         if base in ("string", "wstring"):
             text = f"s{seed}"
             return text[:bound] if bound else text
-        if base == "byte":  # rclpy holds these as 1-byte bytes, launchkit as ints
-            return ("byte", seed % 100)
+        if base == "byte":  # 1-byte bytes, in rclpy and launchkit
+            return bytes([seed % 100])
         if base.startswith("int"):
             return -(seed % 100)
         return seed % 100
@@ -102,8 +101,6 @@ def _ours(type_name: str, values: dict[str, Any]) -> Any:
 
 
 def _to_ours(value: Any) -> Any:
-    if isinstance(value, tuple) and value[0] == "byte":
-        return value[1]
     if isinstance(value, tuple):
         return _ours(value[1], value[2])
     if isinstance(value, list):
@@ -120,8 +117,6 @@ def _theirs(type_name: str, values: dict[str, Any]) -> Any:
 
 
 def _to_theirs(value: Any) -> Any:
-    if isinstance(value, tuple) and value[0] == "byte":
-        return bytes([value[1]])
     if isinstance(value, tuple):
         return _theirs(value[1], value[2])
     if isinstance(value, list):
@@ -210,7 +205,7 @@ def _same_except_padding(ours: bytes, theirs: bytes, msg: Any, type_name: str) -
 COMMON_TYPES = sorted(
     name
     for name in OFFICIAL_MSG
-    if "/msg/" in name and name in typestore().types and not name.startswith("rmw_dds_common")
+    if name in type_names("msg") and not name.startswith("rmw_dds_common")
 )
 
 
@@ -276,7 +271,7 @@ def test_service_hashes_match_the_official_ones() -> None:
         for name in OFFICIAL_SRV
         if "/srv/" in name
         and not name.endswith(("_Request", "_Response", "_Event"))
-        and name + "_Request" in typestore().types
+        and name in type_names("srv")
     )
     assert "std_srvs/srv/SetBool" in services and "rcl_interfaces/srv/SetParameters" in services
     wrong = {n: type_hash(n) for n in services if type_hash(n) != OFFICIAL_SRV[n]}

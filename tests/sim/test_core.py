@@ -10,13 +10,13 @@ from pathlib import Path
 
 import pytest
 
+from launchkit.rotations import yaw_of
 from launchkit.stock.gazebo_ros.sim.diff_drive import DiffDriveController
 from launchkit.stock.gazebo_ros.sim.engine import Entity, Simulation, SimulationError
 from launchkit.stock.gazebo_ros.sim.model import ModelError
 from launchkit.stock.gazebo_ros.sim.plugins import EntityPlugins, load_plugins
 from launchkit.stock.gazebo_ros.sim.sensors import Camera
 from launchkit.stock.gazebo_ros.sim.world import load_world, resolve_world
-from launchkit.stock.rotations import yaw_of
 
 
 def spawn_seed(sim: Simulation, urdf: str, name: str = "robot") -> tuple[Entity, EntityPlugins]:

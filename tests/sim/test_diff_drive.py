@@ -6,6 +6,7 @@ import math
 
 import pytest
 
+from launchkit.rotations import quaternion_from_yaw, yaw_of
 from launchkit.stock.gazebo_ros.sim.diff_drive import (
     ENCODER,
     BaseState,
@@ -14,7 +15,6 @@ from launchkit.stock.gazebo_ros.sim.diff_drive import (
     DiffDriveParams,
     wheel_geometry_warnings,
 )
-from launchkit.stock.rotations import quaternion_from_yaw, yaw_of
 
 SEED_TAGS = {
     "odometry_frame": "odom",

@@ -7,7 +7,7 @@ import math
 
 import pytest
 
-from launchkit.stock.rotations import (
+from launchkit.rotations import (
     conjugate,
     quaternion_from_yaw,
     quaternion_to_rpy,

@@ -28,9 +28,17 @@ def test_a_busy_port_is_one_line_exit_2(processes: Processes) -> None:
         busy.bind(("127.0.0.1", 0))
         busy.listen()
         port = busy.getsockname()[1]
-        line = _fails(processes, "--port", str(port))
-    assert f"cannot serve the viewer on 127.0.0.1:{port}" in line
-    assert "expected a free port" in line
+        proc = processes.start("launchkit.stock.rviz2.node", "--port", str(port))
+        _, err = proc.communicate(timeout=30)
+    assert proc.returncode == 2 and "Traceback" not in err, err
+    # says why, and how to choose another port where the user chose this one
+    assert err.splitlines() == [
+        f"rviz2: error: cannot serve the viewer on 127.0.0.1:{port}: the port is already in use "
+        "(another viewer, or another program, listens there) (expected a free port)",
+        "  hint: choose another port: viewer_port:=N on the robot's launch (launchkit run "
+        "gazebo_and_rviz.launch.xml viewer_port:=8766; 0 picks a free one), else rviz2's port "
+        "parameter, its --port N, or $LAUNCHKIT_VIEWER_PORT",
+    ]
 
 
 def test_a_port_parameter_of_the_wrong_type_is_one_line_exit_2(processes: Processes) -> None:

@@ -10,7 +10,7 @@ import numpy as np
 import pytest
 import yourdfpy
 
-from launchkit.stock.rotations import matrix_to_quaternion, rotate, rpy_to_quaternion
+from launchkit.rotations import matrix_to_quaternion, rotate, rpy_to_quaternion
 from launchkit.stock.urdf import Transform, UrdfError, parse_urdf
 
 SEED = (Path(__file__).parents[2] / "urdf" / "three_wheeled_robot.urdf").read_text()

@@ -17,7 +17,7 @@ import re
 
 from launchkit.description.substitutions import SUBSTITUTIONS
 from launchkit.description.substitutions.base import Substitution, Text, Value
-from launchkit.errors import LaunchFileError, Location
+from launchkit.errors import LaunchFileError, Location, did_you_mean
 
 #: How deep ``$(...)`` may nest in one value (real files nest two or three levels).
 MAX_DEPTH = 64
@@ -138,6 +138,7 @@ class _Parser:
                 f"unknown substitution $({name})",
                 where,
                 expected="one of: " + ", ".join(sorted(SUBSTITUTIONS)),
+                hint=did_you_mean(name, SUBSTITUTIONS),
             )
         return cls(args, where)
 

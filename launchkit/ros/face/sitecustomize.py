@@ -11,15 +11,11 @@ import sys
 
 
 def _install_message_packages() -> None:
-    from launchkit.ros import msgs
-
-    install = getattr(msgs, "install", None)
-    if install is not None:
-        install()
-    else:  # a launchkit.ros.msgs that serves only launchkit.ros.msgs.PKG: alias the names
-        from launchkit.ros.face._message_alias import install_alias
-
-        install_alias()
+    try:
+        from launchkit.ros.msgs import install
+    except ImportError:  # an interpreter without launchkit: `import rclpy` will say so
+        return
+    install()
 
 
 def _chain() -> None:

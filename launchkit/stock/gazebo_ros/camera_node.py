@@ -19,20 +19,19 @@ if it cannot load).
 
 from __future__ import annotations
 
-import importlib
 from dataclasses import asdict, dataclass
 from typing import Any
 
+import launchkit.ros as ros
 from launchkit.errors import UserError
 from launchkit.stock import _entry
 from launchkit.stock.gazebo_ros import messages
-from launchkit.stock.gazebo_ros._shutdown import shutdown_within
 from launchkit.stock.gazebo_ros.sim.engine import Simulation, SimulationError
 from launchkit.stock.gazebo_ros.sim.model import ModelError, SensorSpec, parse_model
 from launchkit.stock.gazebo_ros.sim.quiet import silence_c_stdout
 from launchkit.stock.gazebo_ros.sim.sensors import Camera, CameraConfig, RateGate
 from launchkit.stock.gazebo_ros.sim.world import load_world, resolve_world
-from launchkit.stock.gazebo_ros.state_pairs import StatePairs, nanoseconds
+from launchkit.stock.gazebo_ros.state_pairs import StatePairs, nanoseconds, subscribe_halves
 
 #: Wall seconds between looks at the image topic's subscriber count while nobody watches.
 IDLE_POLL = 0.1
@@ -59,9 +58,8 @@ class CameraNodeParams:
 class CameraNode:
     """Mirrors one entity from the server's state and publishes its camera's frames."""
 
-    def __init__(self, ros: Any) -> None:
-        self.ros = ros
-        self.node = ros.Node("gazebo_ros_camera")
+    def __init__(self, node: ros.Node) -> None:
+        self.node = node
         node, self.logger = self.node, self.node.get_logger()
         entity = str(node.declare_parameter("entity", "").value)
         model = str(node.declare_parameter("model", "").value)
@@ -119,21 +117,9 @@ class CameraNode:
         """Whether the image has subscribers; follows the server's state only while it does."""
         watched = bool(self.image_pub.get_subscription_count() > 0)
         if watched and not self.state_subs:
-            node, name = self.node, self.entity_name
-            self.state_subs = [
-                node.create_subscription(
-                    messages.message_class("nav_msgs", "Odometry"),
-                    messages.GROUND_TRUTH_TOPIC.format(entity=name),
-                    self._truth,
-                    10,
-                ),
-                node.create_subscription(
-                    messages.message_class("sensor_msgs", "JointState"),
-                    messages.STATE_TOPIC.format(entity=name),
-                    self._joints,
-                    10,
-                ),
-            ]
+            self.state_subs = subscribe_halves(
+                self.node, self.entity_name, self._truth, self._joints
+            )
             self._renderer()
             self.logger.info("image subscribed: rendering")
         elif not watched and self.state_subs:
@@ -163,9 +149,9 @@ class CameraNode:
 
     def _drain(self) -> None:
         """Run the callbacks already queued, so that the newest state is known."""
-        while self.ros.ok():
+        while ros.ok():
             self.received = False
-            self.ros.spin_once(self.node, timeout_sec=0.0)
+            ros.spin_once(self.node, timeout_sec=0.0)
             if not self.received:
                 return
 
@@ -187,7 +173,7 @@ class CameraNode:
         )
         frame = camera.render()
         self.rendered = key
-        if not self.ros.ok():
+        if not ros.ok():
             return False
         self.image_pub.publish(messages.image(self.config, now, frame))
         self.info_pub.publish(messages.camera_info(self.config, now))
@@ -195,11 +181,11 @@ class CameraNode:
 
     def run(self) -> None:
         """Follow, render and publish until shutdown."""
-        while self.ros.ok():
+        while ros.ok():
             if not self._watch():
-                self.ros.spin_once(self.node, timeout_sec=IDLE_POLL)
+                ros.spin_once(self.node, timeout_sec=IDLE_POLL)
                 continue
-            self.ros.spin_once(self.node, timeout_sec=0.05)
+            ros.spin_once(self.node, timeout_sec=0.05)
             self._drain()
             self.render_if_due()
 
@@ -218,16 +204,12 @@ def _camera_config(sensors: tuple[SensorSpec, ...], name: str) -> CameraConfig:
 
 def main(argv: list[str]) -> int:
     """Run the camera node until stopped; ``argv`` is the whole command line."""
-    ros = importlib.import_module("launchkit.ros")
-    ros.init(args=argv)
-    camera: CameraNode | None = None
-    try:
-        camera = CameraNode(ros)
-        camera.run()
-    finally:
-        if camera is not None:
+    with _entry.ros_node(argv, "gazebo_ros_camera") as node:
+        camera = CameraNode(node)
+        try:
+            camera.run()
+        finally:
             camera.close()
-        shutdown_within(ros, 2.0, 0)
     return 0
 
 

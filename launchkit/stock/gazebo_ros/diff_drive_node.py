@@ -9,13 +9,12 @@ alone: ``launchkit exec gazebo_ros diff_drive --ros-args -p entity:=NAME -p left
 
 from __future__ import annotations
 
-import importlib
 from typing import Any
 
+import launchkit.ros as ros
 from launchkit.errors import UserError
 from launchkit.stock import _entry
 from launchkit.stock.gazebo_ros import messages
-from launchkit.stock.gazebo_ros._shutdown import shutdown_within
 from launchkit.stock.gazebo_ros.sim.diff_drive import (
     BaseState,
     DiffDriveConfigError,
@@ -23,15 +22,14 @@ from launchkit.stock.gazebo_ros.sim.diff_drive import (
     DiffDriveParams,
     is_finite_command,
 )
-from launchkit.stock.gazebo_ros.state_pairs import StatePairs, nanoseconds
+from launchkit.stock.gazebo_ros.state_pairs import StatePairs, nanoseconds, subscribe_halves
 
 
 class DiffDriveNode:
     """Wires a :class:`DiffDriveController` to the simulator's topics."""
 
-    def __init__(self, ros: Any) -> None:
-        self.node = ros.Node("gazebo_ros_diff_drive")
-        node = self.node
+    def __init__(self, node: ros.Node) -> None:
+        self.node = node
         entity = str(node.declare_parameter("entity", "").value)
         if not entity:
             raise DiffDriveConfigError("diff drive: parameter 'entity' is required (a model name)")
@@ -56,15 +54,7 @@ class DiffDriveNode:
         node.create_subscription(
             messages.message_class("geometry_msgs", "Twist"), p.command_topic, self._cmd, 1
         )
-        node.create_subscription(
-            messages.message_class("nav_msgs", "Odometry"),
-            messages.GROUND_TRUTH_TOPIC.format(entity=entity),
-            self._truth,
-            10,
-        )
-        node.create_subscription(
-            joint_state, messages.STATE_TOPIC.format(entity=entity), self._joints, 10
-        )
+        subscribe_halves(node, entity, self._truth, self._joints)
         node.get_logger().info(
             f"driving '{entity}': {p.left_joint}/{p.right_joint}, separation "
             f"{p.wheel_separation} m, diameter {p.wheel_diameter} m, {p.update_rate} Hz, "
@@ -147,16 +137,10 @@ class DiffDriveNode:
 
 def main(argv: list[str]) -> int:
     """Run the diff drive node until stopped; ``argv`` is the whole command line."""
-    ros = importlib.import_module("launchkit.ros")
-    ros.init(args=argv)
     try:
-        node = DiffDriveNode(ros)
-        ros.spin(node.node)
+        return _entry.spin(argv, "gazebo_ros_diff_drive", DiffDriveNode)
     except DiffDriveConfigError as exc:
         raise UserError(str(exc)) from None
-    finally:
-        shutdown_within(ros, 2.0, 0)
-    return 0
 
 
 if __name__ == "__main__":

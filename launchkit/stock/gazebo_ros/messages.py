@@ -1,33 +1,41 @@
 """Conversions from the simulation core's plain values to ROS messages (launchkit.ros types).
 
-Numeric arrays are numpy arrays of the field's type, which is what the typestore's CDR
-serializer expects.
+Numeric sequences are given as ``array.array`` or ``bytes`` (what the message classes hold, as
+rclpy's do: no conversion element by element), fixed-size arrays as lists.
 """
 
 from __future__ import annotations
 
+import array
 from typing import Any
 
-import numpy as np
-
+from launchkit.ros.msgs import get_message, get_service
 from launchkit.stock.gazebo_ros.sim.diff_drive import Odometry
 from launchkit.stock.gazebo_ros.sim.sensors import CameraConfig, LidarConfig
 
 
 def message_class(package: str, name: str) -> Any:
-    """Message class ``package/msg/name`` of the ROS layer (imported on first use, so that
-    importing this module does not start the ROS layer): the one way the simulator's nodes
+    """Message class ``package/msg/name`` of the ROS layer: the one way the simulator's nodes
     get their message types."""
-    from launchkit.ros.msgs import get_message
-
     return get_message(f"{package}/msg/{name}")
 
 
 def service_class(package: str, name: str) -> Any:
-    """Service type ``package/srv/name`` of the ROS layer (imported on first use)."""
-    from launchkit.ros.msgs import get_service
-
+    """Service type ``package/srv/name`` of the ROS layer."""
     return get_service(f"{package}/srv/{name}")
+
+
+def point(cls: Any, xyz: Any) -> Any:
+    """A ``Point`` or ``Vector3`` (``cls``) from three numbers (message classes take keywords
+    only, as rclpy's)."""
+    x, y, z = xyz
+    return cls(x=float(x), y=float(y), z=float(z))
+
+
+def quaternion(cls: Any, xyzw: Any) -> Any:
+    """A ``Quaternion`` (``cls``) from four numbers."""
+    x, y, z, w = xyzw
+    return cls(x=float(x), y=float(y), z=float(z), w=float(w))
 
 
 #: Topics between the simulator and the diff drive node process, per entity.
@@ -78,12 +86,15 @@ def odometry(odom: Odometry) -> Any:
         header=header(odom.stamp, odom.frame_id),
         child_frame_id=odom.child_frame_id,
         pose=PoseWithCovariance(
-            pose=Pose(position=Point(*odom.position), orientation=Quaternion(*odom.orientation)),
-            covariance=np.array(odom.pose_covariance, dtype=np.float64),
+            pose=Pose(
+                position=point(Point, odom.position),
+                orientation=quaternion(Quaternion, odom.orientation),
+            ),
+            covariance=list(odom.pose_covariance),
         ),
         twist=TwistWithCovariance(
-            twist=Twist(linear=Vector3(*odom.linear), angular=Vector3(*odom.angular)),
-            covariance=np.array(odom.twist_covariance, dtype=np.float64),
+            twist=Twist(linear=point(Vector3, odom.linear), angular=point(Vector3, odom.angular)),
+            covariance=list(odom.twist_covariance),
         ),
     )
 
@@ -102,7 +113,8 @@ def transform(odom: Odometry) -> Any:
                 header=header(odom.stamp, odom.frame_id),
                 child_frame_id=odom.child_frame_id,
                 transform=Transform(
-                    translation=Vector3(*odom.position), rotation=Quaternion(*odom.orientation)
+                    translation=point(Vector3, odom.position),
+                    rotation=quaternion(Quaternion, odom.orientation),
                 ),
             )
         ]
@@ -122,8 +134,8 @@ def laser_scan(config: LidarConfig, seconds: float, ranges: list[float]) -> Any:
         scan_time=0.0,
         range_min=config.range_min,
         range_max=config.range_max,
-        ranges=np.array(ranges, dtype=np.float32),
-        intensities=np.zeros(len(ranges), dtype=np.float32),
+        ranges=array.array("f", ranges),
+        intensities=array.array("f", [0.0]) * len(ranges),
     )
 
 
@@ -138,7 +150,7 @@ def image(config: CameraConfig, seconds: float, data: bytes) -> Any:
         encoding=config.encoding,
         is_bigendian=0,
         step=config.width * config.channels,
-        data=np.frombuffer(data, dtype=np.uint8),
+        data=data,  # bytes: one copy into the message's array.array
     )
 
 
@@ -152,10 +164,10 @@ def camera_info(config: CameraConfig, seconds: float) -> Any:
         height=config.height,
         width=config.width,
         distortion_model="plumb_bob",
-        d=np.zeros(5, dtype=np.float64),
-        k=np.array(k, dtype=np.float64),
-        r=np.array([1.0, 0, 0, 0, 1.0, 0, 0, 0, 1.0], dtype=np.float64),
-        p=np.array(p, dtype=np.float64),
+        d=array.array("d", [0.0] * 5),
+        k=list(k),
+        r=[1.0, 0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 1.0],
+        p=list(p),
     )
 
 
@@ -172,7 +184,7 @@ def joint_state(
     return JointState(
         header=header(seconds, ""),
         name=list(names),
-        position=np.array(positions, dtype=np.float64),
-        velocity=np.array(velocities, dtype=np.float64),
-        effort=np.array(efforts, dtype=np.float64),
+        position=array.array("d", positions),
+        velocity=array.array("d", velocities),
+        effort=array.array("d", efforts),
     )

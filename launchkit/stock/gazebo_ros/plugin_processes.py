@@ -12,11 +12,10 @@ process group), death with the server (PR_SET_PDEATHSIG), restart after :data:`R
 when it dies, SIGTERM then SIGKILL after :data:`STOP_TIMEOUT` on stop; its output then goes to
 the server's.
 
-Every plugin child's command line comes from :func:`plugin_command`, and every child goes
-through :meth:`PluginProcesses._start_child` (a name and an argv), which picks the launcher or
-the fallback. When the server has a plugin host (:mod:`plugin_host`), the process started is
-a trampoline that has the node forked from the host, with the message layer imported already
-(the node is up in ~0.1 s instead of 1-2 s); it stands for the node in every way above.
+Every plugin child's command line comes from :func:`plugin_command` (``python -m`` the node's
+own module, so ``ps`` and ``pgrep`` name it), and every child goes through
+:meth:`PluginProcesses._start_child` (a name and an argv), which picks the launcher or the
+fallback.
 """
 
 from __future__ import annotations
@@ -40,7 +39,6 @@ from launchkit.runtime.lifecycle import Escalation, Lifecycle, Respawn, RespawnP
 from launchkit.runtime.process import kill_group
 from launchkit.runtime.supervisor_client import SupervisorClient, SupervisorError
 from launchkit.stock.gazebo_ros.camera_node import CameraNodeParams
-from launchkit.stock.gazebo_ros.plugin_host import PluginHost
 from launchkit.stock.gazebo_ros.sim.diff_drive import DiffDriveParams
 from launchkit.stock.gazebo_ros.sim.model import PluginSpec
 
@@ -111,9 +109,7 @@ class Child:
 class PluginProcesses:
     """The children of the server, keyed by entity."""
 
-    log: Callable[[str], None]
-    #: Where the nodes are forked from (:mod:`plugin_host`); None: each starts cold.
-    host: PluginHost | None = None
+    log: Callable[[str], object]
     children: dict[str, list[Child]] = field(default_factory=dict)
     _tmp: tempfile.TemporaryDirectory[str] = field(default_factory=_plugin_folder)
     _launcher: SupervisorClient | None = None
@@ -129,10 +125,7 @@ class PluginProcesses:
         self._start_child(entity, plugin.name, argv)
 
     def _start_child(self, entity: str, name: str, argv: list[str]) -> None:
-        """Start one plugin child of ``entity``: by the launcher if there is one, else here;
-        forked from the plugin host if there is one."""
-        if self.host is not None:
-            argv = self.host.command(argv)
+        """Start one plugin child of ``entity``: by the launcher if there is one, else here."""
         child = Child(name, argv)
         launcher = self._connect()
         if launcher is None:

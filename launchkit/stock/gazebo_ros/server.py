@@ -20,22 +20,20 @@ for a model without a joint state plugin; 0 for none, as in Gazebo; see
 from __future__ import annotations
 
 import faulthandler
-import importlib
 import os
 import signal
-import sys
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
 
+import launchkit.ros as ros
+from launchkit.rotations import quaternion_to_rpy
 from launchkit.stock import _entry
-from launchkit.stock._node_host import preload
 from launchkit.stock.gazebo_ros import messages
-from launchkit.stock.gazebo_ros._shutdown import shutdown_within
 from launchkit.stock.gazebo_ros.camera_node import CameraNodeParams
-from launchkit.stock.gazebo_ros.plugin_host import PluginHost
 from launchkit.stock.gazebo_ros.plugin_processes import PluginProcesses
 from launchkit.stock.gazebo_ros.server_options import ServerOptions, UsageError, parse_server_args
+from launchkit.stock.gazebo_ros.sim.diff_drive import Odometry
 from launchkit.stock.gazebo_ros.sim.engine import Entity, Simulation, SimulationError
 from launchkit.stock.gazebo_ros.sim.joint_states import JointStateOutput
 from launchkit.stock.gazebo_ros.sim.model import ModelError
@@ -43,7 +41,6 @@ from launchkit.stock.gazebo_ros.sim.pacing import Pacer
 from launchkit.stock.gazebo_ros.sim.plugins import EntityPlugins, PluginDefaults, load_plugins
 from launchkit.stock.gazebo_ros.sim.sensors import RateGate
 from launchkit.stock.gazebo_ros.sim.world import load_world, resolve_world
-from launchkit.stock.rotations import quaternion_to_rpy
 
 #: Seconds a stop request may take before the server prints its stacks and exits hard (under
 #: ROS's default SIGINT -> SIGKILL escalation of 10 s).
@@ -65,9 +62,8 @@ class _Spawned:
 class SimServer:
     """The node: owns the :class:`Simulation` from one thread and paces it."""
 
-    def __init__(self, ros: Any, options: ServerOptions, host: PluginHost | None = None) -> None:
-        self.ros = ros
-        self.node = ros.Node("gazebo")
+    def __init__(self, node: ros.Node, options: ServerOptions) -> None:
+        self.node = node
         self.logger = self.node.get_logger()
         p = self.node
         rtf = float(p.declare_parameter("real_time_factor", 1.0).value)
@@ -101,7 +97,7 @@ class SimServer:
         self.spawned: dict[str, _Spawned] = {}
         #: Topics where the implicit joint state streams pause: another node publishes there.
         self.yielded_topics: set[str] = set()
-        self.children = PluginProcesses(self.logger.info, host)
+        self.children = PluginProcesses(self.logger.info)
         self.sensor_qos = ros.QoSProfile(depth=5, reliability=ros.ReliabilityPolicy.RELIABLE)
         self.clock_pub = None
         if options.ros_init:
@@ -282,16 +278,16 @@ class SimServer:
     def run(self) -> None:
         """Step, publish and pace until shutdown."""
         steps_between_spins = 8
-        while self.running and self.ros.ok():
+        while self.running and ros.ok():
             # Ground truth and joint states go out before the step so that a subscriber sees a
             # consistent state at the stamp.
             self._publish(self.sim.time)
             self.sim.step()
             wait = self.pacer.wait_needed(self.sim.time)
             if wait > 0:
-                self.ros.spin_once(self.node, timeout_sec=min(wait, 0.05))
+                ros.spin_once(self.node, timeout_sec=min(wait, 0.05))
             elif self.sim.steps % steps_between_spins == 0:
-                self.ros.spin_once(self.node, timeout_sec=0.0)
+                ros.spin_once(self.node, timeout_sec=0.0)
             if self.sim.steps % 240 == 0:
                 self.children.supervise()
                 self._yield_joint_state_topics()
@@ -303,8 +299,6 @@ class SimServer:
 
 
 def _ground_truth(now: float, root: str, base: Any) -> Any:
-    from launchkit.stock.gazebo_ros.sim.diff_drive import Odometry
-
     zeros = tuple(0.0 for _ in range(36))
     return Odometry(
         stamp=now,
@@ -326,9 +320,7 @@ def main(argv: list[str]) -> int:
         resolve_world(options.world)
     except ModelError as exc:
         raise UsageError(str(exc)) from None
-    ros = importlib.import_module("launchkit.ros")
     server: SimServer | None = None
-    host: PluginHost | None = None
     stop_requested = False
 
     def _stop(_signum: int, _frame: object) -> None:
@@ -342,29 +334,22 @@ def main(argv: list[str]) -> int:
 
     # `kill -USR1 PID` prints every thread's stack: what a stuck server is doing.
     faulthandler.register(signal.SIGUSR1, all_threads=True)
-    # Installed before the (slow) imports and world load, so an early Ctrl-C still ends cleanly,
-    # and again after it: creating the node installs the ROS layer's handlers over these.
+    # Installed before the world load, so an early Ctrl-C still ends cleanly, and again after
+    # it: initialising the ROS layer installs its handlers over these.
     signal.signal(signal.SIGTERM, _stop)
     signal.signal(signal.SIGINT, _stop)
     try:
-        # The plugin host is forked before ros.init: before any Zenoh session (and its
-        # threads) exists in this process.
-        preload()
-        host = PluginHost.fork(lambda text: print(f"[gazebo] {text}", file=sys.stderr))
-        ros.init(args=argv)
-        server = SimServer(ros, options, host)
-        signal.signal(signal.SIGTERM, _stop)
-        signal.signal(signal.SIGINT, _stop)
-        server.running = not stop_requested
-        server.run()
+        with _entry.ros_node(argv, "gazebo") as node:
+            server = SimServer(node, options)
+            signal.signal(signal.SIGTERM, _stop)
+            signal.signal(signal.SIGINT, _stop)
+            server.running = not stop_requested
+            try:
+                server.run()
+            finally:
+                server.close()
     except ModelError as exc:
         raise UsageError(str(exc)) from None
-    finally:
-        if server is not None:
-            server.close()
-        if host is not None:
-            host.close()
-        shutdown_within(ros, 2.0, 0)
     return 0
 
 

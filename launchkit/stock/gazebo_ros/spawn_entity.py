@@ -12,16 +12,17 @@ otherwise.
 from __future__ import annotations
 
 import argparse
-import importlib
 import sys
 import time
 from pathlib import Path
 from typing import Any
 
+import launchkit.ros as ros
 from launchkit.errors import UserError
+from launchkit.ros.services import ServiceCallError
+from launchkit.rotations import rpy_to_quaternion
 from launchkit.stock import _entry
 from launchkit.stock.gazebo_ros import messages
-from launchkit.stock.rotations import rpy_to_quaternion
 
 
 class SpawnError(UserError):
@@ -56,7 +57,7 @@ def parse_args(argv: list[str]) -> argparse.Namespace:
     return parser.parse_args(argv)
 
 
-def _read_topic(ros: Any, node: Any, topic: str, timeout: float) -> str:
+def _read_topic(node: Any, topic: str, timeout: float) -> str:
     string = messages.message_class("std_msgs", "String")
     received: list[str] = []
     qos = ros.QoSProfile(depth=1, durability=ros.DurabilityPolicy.TRANSIENT_LOCAL)
@@ -73,14 +74,10 @@ def _read_topic(ros: Any, node: Any, topic: str, timeout: float) -> str:
 
 
 def _call(client: Any, request: Any, deadline: float) -> Any:
-    services = importlib.import_module("launchkit.ros.services")
     while True:
         try:
-            response = client.call(request, timeout_sec=60.0)
-            if response is None:
-                raise SpawnError("calling /spawn_entity failed: no answer within 60 s")
-            return response
-        except services.ServiceCallError as exc:
+            return client.call(request, timeout_sec=60.0)
+        except ServiceCallError as exc:
             # "No response" means no server took the request: the server's liveliness token can
             # reach us before its queryable does. Anything else is final.
             if "no response" not in str(exc) or time.monotonic() > deadline:
@@ -88,9 +85,9 @@ def _call(client: Any, request: Any, deadline: float) -> Any:
         time.sleep(0.1)
 
 
-def spawn(ros: Any, args: argparse.Namespace) -> str:
-    """Do the spawn; the service's status message on success, :class:`SpawnError` otherwise."""
-    node = ros.Node("spawn_entity")
+def spawn(node: ros.Node, args: argparse.Namespace) -> str:
+    """Do the spawn from ``node``; the service's status message on success,
+    :class:`SpawnError` otherwise."""
     if args.file is not None:
         try:
             xml = Path(args.file).read_text()
@@ -99,7 +96,7 @@ def spawn(ros: Any, args: argparse.Namespace) -> str:
     elif args.stdin:
         xml = sys.stdin.read()
     else:
-        xml = _read_topic(ros, node, args.topic, args.timeout)
+        xml = _read_topic(node, args.topic, args.timeout)
     srv = messages.service_class("gazebo_msgs", "SpawnEntity")
     pose, point, quaternion = (
         messages.message_class("geometry_msgs", name) for name in ("Pose", "Point", "Quaternion")
@@ -107,6 +104,8 @@ def spawn(ros: Any, args: argparse.Namespace) -> str:
     client = node.create_client(srv, "/spawn_entity")
     node.get_logger().info("Waiting for service /spawn_entity")
     if not client.wait_for_service(timeout_sec=args.spawn_service_timeout):
+        if not ros.ok():
+            raise KeyboardInterrupt  # stopped while it waited (Ctrl-C, SIGTERM): a clean end
         raise SpawnError(
             f"service /spawn_entity not available within {args.spawn_service_timeout:g} s "
             "(expected a running gzserver with libgazebo_ros_factory.so)"
@@ -132,12 +131,8 @@ def spawn(ros: Any, args: argparse.Namespace) -> str:
 def main(argv: list[str]) -> int:
     """Spawn the entity; ``argv`` is the whole command line."""
     args = parse_args(argv[1:])
-    ros = importlib.import_module("launchkit.ros")
-    ros.init(args=argv)
-    try:
-        message = spawn(ros, args)
-    finally:
-        ros.try_shutdown()
+    with _entry.ros_node(argv, "spawn_entity") as node:
+        message = spawn(node, args)
     print(f"[spawn_entity] {message}", flush=True)
     return 0
 

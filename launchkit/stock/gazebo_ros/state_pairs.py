@@ -6,9 +6,38 @@ The server publishes both topics of an entity back to back with the same stamp; 
 
 from __future__ import annotations
 
+from collections.abc import Callable
 from typing import Any, Generic, TypeVar
 
+import launchkit.ros as ros
+from launchkit.ros.topics import Subscription
+from launchkit.stock.gazebo_ros import messages
+
 Truth = TypeVar("Truth")
+
+
+def subscribe_halves(
+    node: ros.Node,
+    entity: str,
+    on_truth: Callable[[Any], None],
+    on_joints: Callable[[Any], None],
+) -> list[Subscription]:
+    """Subscribe ``node`` to both halves of ``entity``'s state: its ground truth
+    (``on_truth``) and its joint states (``on_joints``)."""
+    return [
+        node.create_subscription(
+            messages.message_class("nav_msgs", "Odometry"),
+            messages.GROUND_TRUTH_TOPIC.format(entity=entity),
+            on_truth,
+            10,
+        ),
+        node.create_subscription(
+            messages.message_class("sensor_msgs", "JointState"),
+            messages.STATE_TOPIC.format(entity=entity),
+            on_joints,
+            10,
+        ),
+    ]
 
 
 def nanoseconds(msg: Any) -> int:

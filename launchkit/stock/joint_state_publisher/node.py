@@ -13,6 +13,8 @@ from typing import Any
 
 import launchkit.ros as ros
 from launchkit.errors import UserError
+from launchkit.ros.msgs.sensor_msgs.msg import JointState
+from launchkit.ros.msgs.std_msgs.msg import Header, String
 from launchkit.stock import _entry
 from launchkit.stock.joint_state_publisher.state import JointStateMerger
 from launchkit.stock.urdf import parse_urdf
@@ -35,9 +37,6 @@ class JointStatePublisher:
     """The node: waits for a robot description, then publishes ``/joint_states`` at ``rate``."""
 
     def __init__(self, node: ros.Node) -> None:
-        from launchkit.ros.msgs.sensor_msgs.msg import JointState
-        from launchkit.ros.msgs.std_msgs.msg import String
-
         self.node = node
         self.rate = float(_param(node, "rate", 10.0))
         if self.rate <= 0.0:
@@ -81,9 +80,6 @@ class JointStatePublisher:
 
     def publish(self) -> None:
         """Send the current state of every moving joint (nothing until the robot is known)."""
-        from launchkit.ros.msgs.sensor_msgs.msg import JointState
-        from launchkit.ros.msgs.std_msgs.msg import Header
-
         if self.merger is None:
             return
         state = self.merger.current()
@@ -100,15 +96,9 @@ class JointStatePublisher:
 
 def main(argv: list[str], name: str = "joint_state_publisher") -> int:
     """Run the node called ``name`` until shutdown (Ctrl-C or SIGTERM)."""
-    ros.init(argv)
-    node = ros.Node(name, automatically_declare_parameters_from_overrides=True)
-    try:
-        JointStatePublisher(node)
-        ros.spin(node)
-    finally:
-        node.destroy_node()
-        ros.try_shutdown()
-    return 0
+    return _entry.spin(
+        argv, name, JointStatePublisher, automatically_declare_parameters_from_overrides=True
+    )
 
 
 if __name__ == "__main__":

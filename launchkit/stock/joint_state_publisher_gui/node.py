@@ -12,6 +12,7 @@ from __future__ import annotations
 import sys
 
 import launchkit.ros as ros
+from launchkit.ros.msgs.sensor_msgs.msg import JointState
 from launchkit.stock import _entry
 from launchkit.stock.joint_state_publisher.node import JointStatePublisher
 
@@ -19,25 +20,23 @@ from launchkit.stock.joint_state_publisher.node import JointStatePublisher
 SLIDER_TOPIC = "~/slider_positions"
 
 
+def with_sliders(node: ros.Node) -> None:
+    """joint_state_publisher on ``node``, taking the viewer's slider positions too."""
+    publisher = JointStatePublisher(node)
+    sliders = node.create_subscription(JointState, SLIDER_TOPIC, publisher.on_source, 10)
+    node.get_logger().info(
+        f"joint sliders: open the viewer (rviz2) page; positions arrive on {sliders.topic}"
+    )
+
+
 def main(argv: list[str]) -> int:
     """Run joint_state_publisher under this node's name, taking slider positions too."""
-    from launchkit.ros.msgs.sensor_msgs.msg import JointState
-
-    ros.init(argv)
-    node = ros.Node(
-        "joint_state_publisher_gui", automatically_declare_parameters_from_overrides=True
+    return _entry.spin(
+        argv,
+        "joint_state_publisher_gui",
+        with_sliders,
+        automatically_declare_parameters_from_overrides=True,
     )
-    try:
-        publisher = JointStatePublisher(node)
-        sliders = node.create_subscription(JointState, SLIDER_TOPIC, publisher.on_source, 10)
-        node.get_logger().info(
-            f"joint sliders: open the viewer (rviz2) page; positions arrive on {sliders.topic}"
-        )
-        ros.spin(node)
-    finally:
-        node.destroy_node()
-        ros.try_shutdown()
-    return 0
 
 
 if __name__ == "__main__":

@@ -85,18 +85,15 @@ class ComponentManager:
 
 def main(argv: list[str]) -> int:
     """Run the container until shutdown."""
-    ros.init(argv)
-    node = ros.Node("ComponentManager")
-    executor = ros.SingleThreadedExecutor()
-    manager = ComponentManager(node, executor)
-    executor.add_node(node)
-    try:
-        executor.spin()
-    finally:
-        for instance in manager.components.values():
-            instance.destroy_node()
-        node.destroy_node()
-        ros.try_shutdown()
+    with _entry.ros_node(argv, "ComponentManager") as node:
+        executor = ros.SingleThreadedExecutor()
+        manager = ComponentManager(node, executor)
+        executor.add_node(node)
+        try:
+            executor.spin()
+        finally:
+            for instance in manager.components.values():
+                instance.destroy_node()
     return 0
 
 

@@ -14,6 +14,9 @@ from typing import Any
 
 import launchkit.ros as ros
 from launchkit.errors import Location, UserError
+from launchkit.ros.msgs.sensor_msgs.msg import JointState
+from launchkit.ros.msgs.std_msgs.msg import String
+from launchkit.ros.msgs.tf2_msgs.msg import TFMessage
 from launchkit.stock import _entry
 from launchkit.stock._tf import tf_message
 from launchkit.stock.urdf import RobotModel, parse_urdf
@@ -29,10 +32,6 @@ class RobotStatePublisher:
     """The node: the robot model, its latched publications and the ``/joint_states`` handler."""
 
     def __init__(self, node: ros.Node) -> None:
-        from launchkit.ros.msgs.sensor_msgs.msg import JointState
-        from launchkit.ros.msgs.std_msgs.msg import String
-        from launchkit.ros.msgs.tf2_msgs.msg import TFMessage
-
         self.node = node
         description = str(node.declare_parameter("robot_description", "").value)
         frequency = float(node.declare_parameter("publish_frequency", 20.0).value)
@@ -63,8 +62,6 @@ class RobotStatePublisher:
 
     def _publish_model(self, description: str) -> None:
         """Send the (new) description and the fixed transforms on their latched topics."""
-        from launchkit.ros.msgs.std_msgs.msg import String
-
         self.description.publish(String(data=description))
         now = self.node.get_clock().now().to_msg()
         self.tf_static.publish(tf_message(self.model.fixed_transforms(self.frame_prefix), now))
@@ -104,15 +101,7 @@ class RobotStatePublisher:
 
 def main(argv: list[str]) -> int:
     """Run the node until shutdown (Ctrl-C or SIGTERM)."""
-    ros.init(argv)
-    node = ros.Node("robot_state_publisher")
-    try:
-        RobotStatePublisher(node)
-        ros.spin(node)
-    finally:
-        node.destroy_node()
-        ros.try_shutdown()
-    return 0
+    return _entry.spin(argv, "robot_state_publisher", RobotStatePublisher)
 
 
 if __name__ == "__main__":

@@ -23,6 +23,7 @@ from typing import Any
 
 import numpy as np
 
+from launchkit.ros.message_data import to_data
 from launchkit.ros.msgs import deserialize
 
 #: Longest array or string of a message shown whole in the topic list's message view.
@@ -106,8 +107,6 @@ def _finite(value: Any) -> Any:
 
 
 def _echo(msg: Any) -> dict[str, Any]:
-    from launchkit.ros.message_data import to_data
-
     return {"fields": _finite(to_data(msg, ECHO_TRUNCATE))}
 
 

@@ -22,6 +22,7 @@ import time
 from collections.abc import Awaitable, Callable
 from typing import Any
 
+from launchkit.ros.message_data import build
 from launchkit.ros.msgs import MessageTypeError, deserialize, normalize_type_name, serialize
 from launchkit.stock.rviz2.hub import Channel, Hub, Message
 from launchkit.stock.rviz2.outbox import Frame, Outbox
@@ -222,8 +223,6 @@ class FoxgloveSession:
         payload = bytes(data[5:])
         try:
             if encoding == "json":
-                from launchkit.ros.message_data import build
-
                 payload = serialize(build(type_name, json.loads(payload), type_name), type_name)
             else:
                 deserialize(payload, type_name)  # refuse bytes that are not the type

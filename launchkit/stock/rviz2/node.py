@@ -13,6 +13,7 @@ picks a free port), ``address`` (``127.0.0.1``: this machine only) and ``allowed
 
 from __future__ import annotations
 
+import argparse
 import sys
 from typing import Any
 
@@ -85,8 +86,13 @@ def main(argv: list[str]) -> int:
     config = load_config(args.display_config) if args.display_config else default_config()
     if args.fixed_frame:
         config = RvizConfig(args.fixed_frame, config.displays, config.frame_rate, config.background)
-    ros.init(argv)
-    node = ros.Node("rviz2")
+    with _entry.ros_node(argv, "rviz2") as node:
+        serve(node, args, config)
+    return 0
+
+
+def serve(node: ros.Node, args: argparse.Namespace, config: RvizConfig) -> None:
+    """Serve the viewer for ``node`` until shutdown (Ctrl-C or SIGTERM)."""
     server: ViewerServer | None = None
     link = RosLink(node)
     try:
@@ -105,7 +111,7 @@ def main(argv: list[str]) -> int:
         )
         server.start()
         link.connect(hub, server)
-        announce(f"viewer: {server.url}")
+        announce(f"viewer: {server.url} (open it in a browser)")
         for line in connect_lines(server, config):  # after the announcement: tests rely on it
             print(line, flush=True)
         if not policy.loopback_only:
@@ -117,9 +123,6 @@ def main(argv: list[str]) -> int:
         link.close()
         if server is not None:
             server.close()
-        node.destroy_node()
-        ros.try_shutdown()
-    return 0
 
 
 if __name__ == "__main__":

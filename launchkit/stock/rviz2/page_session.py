@@ -23,6 +23,7 @@ from collections.abc import Awaitable, Callable
 from typing import Any
 
 from launchkit.errors import UserError
+from launchkit.ros.message_data import build
 from launchkit.ros.msgs import normalize_type_name, serialize
 from launchkit.stock.rviz2.convert import IMAGE_TYPES
 from launchkit.stock.rviz2.hub import Channel, Hub, Message
@@ -110,8 +111,6 @@ class PageSession:
             self.outbox.put(json.dumps({"op": "error", "message": str(error)}))
 
     def _publish(self, request: dict[str, Any]) -> None:
-        from launchkit.ros.message_data import build
-
         topic = request.get("topic")
         if not isinstance(topic, str) or not topic.startswith("/"):
             raise ValueError("publish: 'topic' must be an absolute topic name")

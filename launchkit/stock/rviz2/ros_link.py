@@ -17,6 +17,7 @@ from typing import Any
 
 import launchkit.ros as ros
 from launchkit.ros.keyexpr import Token
+from launchkit.ros.msgs import get_message, message_definition
 from launchkit.stock.rviz2.hub import Endpoint, Hub
 from launchkit.stock.rviz2.server import ViewerServer
 
@@ -58,8 +59,6 @@ def slider_topic(tokens: list[Token]) -> str | None:
 
 @functools.cache
 def _definition(type_name: str) -> str | None:
-    from launchkit.ros.msgs import message_definition
-
     try:
         return message_definition(type_name)
     except Exception:  # a type this installation does not know
@@ -122,8 +121,6 @@ class RosLink:
 
     def subscribe(self, endpoint: Endpoint) -> None:
         """Subscribe raw to ``endpoint``'s topic with QoS that matches every publisher."""
-        from launchkit.ros.msgs import get_message
-
         self.unsubscribe(endpoint.topic)
         qos = ros.QoSProfile(
             depth=10,
@@ -164,8 +161,6 @@ class RosLink:
 
     def acquire_publisher(self, topic: str, type_name: str) -> None:
         """A publisher of ``type_name`` on ``topic`` (reliable, volatile, depth 10)."""
-        from launchkit.ros.msgs import get_message
-
         with self._lock:
             if (topic, type_name) in self._publishers:
                 return

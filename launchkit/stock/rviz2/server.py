@@ -12,6 +12,7 @@ from __future__ import annotations
 
 import asyncio
 import contextlib
+import errno
 import threading
 from collections.abc import Callable
 from typing import Any
@@ -36,6 +37,12 @@ RATES_PERIOD = 1.0
 #: A write buffer this full makes the sender wait (images are ~2 MB each).
 WRITE_LIMIT = 4 * 2**20
 STARTUP_TIMEOUT = 10.0
+#: What to do about a busy port, in each of the ways the port is chosen.
+BUSY_PORT_HINT = (
+    "choose another port: viewer_port:=N on the robot's launch (launchkit run "
+    "gazebo_and_rviz.launch.xml viewer_port:=8766; 0 picks a free one), else rviz2's "
+    "port parameter, its --port N, or $LAUNCHKIT_VIEWER_PORT"
+)
 
 Log = Callable[[str], object]
 
@@ -78,6 +85,13 @@ class ViewerServer:
                 f"the viewer server did not start within {STARTUP_TIMEOUT:g} s",
                 expected="a machine not overloaded",
             )
+        if isinstance(self._error, OSError) and self._error.errno == errno.EADDRINUSE:
+            raise UserError(
+                f"cannot serve the viewer on {self.address}:{self._requested_port}: the port is "
+                "already in use (another viewer, or another program, listens there)",
+                expected="a free port",
+                hint=BUSY_PORT_HINT,
+            ) from None
         if self._error is not None:
             raise UserError(
                 f"cannot serve the viewer on {self.address}:{self._requested_port}: "

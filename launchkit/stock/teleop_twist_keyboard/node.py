@@ -14,6 +14,8 @@ from typing import Any
 
 import launchkit.ros as ros
 from launchkit.errors import UserError
+from launchkit.ros.msgs.geometry_msgs.msg import Twist, TwistStamped, Vector3
+from launchkit.ros.msgs.std_msgs.msg import Header
 from launchkit.stock import _entry
 from launchkit.stock.teleop_twist_keyboard.keys import Teleop, Velocity
 from launchkit.stock.teleop_twist_keyboard.terminal import KeyReader
@@ -25,10 +27,8 @@ POLL_SEC = 0.1
 def main(argv: list[str]) -> int:
     """Run the node until Ctrl-C or a shutdown; the terminal is always restored."""
     reader = KeyReader(sys.stdin.fileno())  # fails before any ROS set-up when not a terminal
-    ros.init(argv)
-    stop = _stop_on_signals()
-    node = ros.Node("teleop_twist_keyboard")
-    try:
+    with _entry.ros_node(argv, "teleop_twist_keyboard") as node:
+        stop = _stop_on_signals()
         stamped = bool(node.declare_parameter("stamped", False).value)
         frame_id = str(node.declare_parameter("frame_id", "").value)
         if frame_id and not stamped:
@@ -57,9 +57,6 @@ def main(argv: list[str]) -> int:
                         break
             finally:
                 publish(Velocity())
-    finally:
-        node.destroy_node()
-        ros.try_shutdown()
     return 0
 
 
@@ -82,9 +79,6 @@ def _say(lines: list[str]) -> None:
 
 def _publisher(node: ros.Node, stamped: bool, frame_id: str) -> Any:
     """A function publishing a :class:`Velocity` as Twist or TwistStamped on ``cmd_vel``."""
-    from launchkit.ros.msgs.geometry_msgs.msg import Twist, TwistStamped, Vector3
-    from launchkit.ros.msgs.std_msgs.msg import Header
-
     pub = node.create_publisher(TwistStamped if stamped else Twist, "cmd_vel", 10)
 
     def publish(velocity: Velocity) -> None:

@@ -13,7 +13,7 @@ import math
 from collections.abc import Callable, Mapping
 from dataclasses import dataclass, field, replace
 
-from launchkit.stock.rotations import quaternion_from_yaw, yaw_of
+from launchkit.rotations import quaternion_from_yaw, yaw_of
 
 #: ``odometry_source`` values, as gazebo_ros numbers them.
 ENCODER = 0
@@ -90,7 +90,7 @@ class DiffDriveParams:
 
     @classmethod
     def from_tags(
-        cls, tags: Mapping[str, str], log: Callable[[str], None] = lambda _m: None
+        cls, tags: Mapping[str, str], log: Callable[[str], object] = lambda _m: None
     ) -> DiffDriveParams:
         """Build from a plugin block's ``tag -> text``; ROS 1 tags are honoured and logged."""
         values: dict[str, str] = {}

@@ -9,18 +9,19 @@ One thread must own a :class:`Simulation`.
 from __future__ import annotations
 
 import os
+import pkgutil
 import tempfile
 from collections.abc import Callable
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
 
+from launchkit.rotations import conjugate, rotate
 from launchkit.stock.gazebo_ros.sim.diff_drive import BaseState
 from launchkit.stock.gazebo_ros.sim.materials import material_rgba
 from launchkit.stock.gazebo_ros.sim.model import ModelError, ModelSpec, parse_model
 from launchkit.stock.gazebo_ros.sim.scenery import build_scenery
 from launchkit.stock.gazebo_ros.sim.world import WorldSpec
-from launchkit.stock.rotations import conjugate, rotate
 
 Pose = tuple[float, float, float, float, float, float]
 
@@ -69,7 +70,7 @@ class Simulation:
         time_step: float = 1.0 / 240.0,
         gui: bool = False,
         egl: bool = False,
-        log: Callable[[str], None] = lambda _m: None,
+        log: Callable[[str], object] = lambda _m: None,
     ) -> None:
         self.p = _import_pybullet()
         self.time_step = time_step
@@ -90,8 +91,6 @@ class Simulation:
 
     def _load_egl(self) -> bool:
         # Must happen before any body exists: the plugin never shows bodies made before it.
-        import pkgutil
-
         loader = pkgutil.get_loader("eglRenderer")
         if loader is None:
             self.log("EGL renderer plugin not found; rendering with TinyRenderer")

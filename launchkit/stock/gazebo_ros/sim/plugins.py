@@ -58,7 +58,7 @@ class EntityPlugins:
 def load_plugins(
     sim: Simulation,
     entity: Entity,
-    log: Callable[[str], None],
+    log: Callable[[str], object],
     defaults: PluginDefaults = PluginDefaults(),
 ) -> EntityPlugins:
     """Configure ``entity``'s plugins; :class:`SimulationError` on an unusable block."""
@@ -119,7 +119,7 @@ def load_plugins(
     return found
 
 
-def _prefixed(log: Callable[[str], None], name: str) -> Callable[[str], None]:
+def _prefixed(log: Callable[[str], object], name: str) -> Callable[[str], object]:
     return lambda message: log(f"diff drive '{name}': {message}")
 
 
@@ -128,7 +128,7 @@ def _check_diff_drive(
     entity: Entity,
     plugin: PluginSpec,
     params: DiffDriveParams,
-    log: Callable[[str], None],
+    log: Callable[[str], object],
 ) -> None:
     for joint in (params.left_joint, params.right_joint):
         if joint not in entity.joints:
