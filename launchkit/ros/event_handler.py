@@ -41,6 +41,14 @@ class QoSMatchedInfo:
 QoSPublisherMatchedInfo = QoSMatchedInfo
 QoSSubscriptionMatchedInfo = QoSMatchedInfo
 
+__all__ = [
+    "PublisherEventCallbacks",
+    "QoSMatchedInfo",
+    "QoSPublisherMatchedInfo",
+    "QoSSubscriptionMatchedInfo",
+    "SubscriptionEventCallbacks",
+]
+
 
 class PublisherEventCallbacks:
     """The event callbacks of a publisher (``create_publisher(event_callbacks=...)``)."""
@@ -63,27 +71,15 @@ class PublisherEventCallbacks:
         self.use_default_callbacks = use_default_callbacks
 
 
-class SubscriptionEventCallbacks:
-    """The event callbacks of a subscription (``create_subscription(event_callbacks=...)``)."""
+class SubscriptionEventCallbacks(PublisherEventCallbacks):
+    """The event callbacks of a subscription (``create_subscription(event_callbacks=...)``):
+    a publisher's, and ``message_lost``."""
 
     def __init__(
-        self,
-        *,
-        deadline: Callable[[Any], None] | None = None,
-        incompatible_qos: Callable[[Any], None] | None = None,
-        liveliness: Callable[[Any], None] | None = None,
-        message_lost: Callable[[Any], None] | None = None,
-        matched: Callable[[QoSMatchedInfo], None] | None = None,
-        incompatible_type: Callable[[Any], None] | None = None,
-        use_default_callbacks: bool = True,
+        self, *, message_lost: Callable[[Any], None] | None = None, **callbacks: Any
     ) -> None:
-        self.deadline = deadline
-        self.incompatible_qos = incompatible_qos
-        self.liveliness = liveliness
+        super().__init__(**callbacks)
         self.message_lost = message_lost
-        self.matched = matched
-        self.incompatible_type = incompatible_type
-        self.use_default_callbacks = use_default_callbacks
 
 
 class MatchedEvent:

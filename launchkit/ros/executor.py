@@ -81,11 +81,13 @@ class ExecutableNode(Protocol):
 
 
 class _WorkTracker:
-    """Counts the handlers running, so ``shutdown`` can wait for them."""
+    """Counts the handlers running, so ``shutdown`` can wait for them; knows the threads that
+    are stepping one (a callback may shut its own executor down: that one is not waited for)."""
 
     def __init__(self) -> None:
         self._running = 0
         self._condition = threading.Condition()
+        self._stepping: set[int] = set()
 
     def __enter__(self) -> None:
         with self._condition:
@@ -96,7 +98,22 @@ class _WorkTracker:
             self._running -= 1
             self._condition.notify_all()
 
+    def step(self, handler: Task) -> None:
+        """Run one step of ``handler`` in this thread."""
+        me = threading.get_ident()
+        self._stepping.add(me)
+        try:
+            handler()
+        finally:
+            self._stepping.discard(me)
+
+    def in_handler(self) -> bool:
+        """Whether the calling thread is stepping a handler (so it is inside a callback)."""
+        return threading.get_ident() in self._stepping
+
     def wait(self, timeout_sec: float | None) -> bool:
+        if self.in_handler():
+            return True
         with self._condition:
             return self._condition.wait_for(lambda: self._running == 0, timeout_sec)
 
@@ -200,13 +217,18 @@ class Executor:
                 return
 
     def spin_once(self, timeout_sec: float | None = None) -> None:
-        """Wait for one callback and run it (or start it); a subclass defines how."""
-        raise NotImplementedError()
+        """Wait (up to ``timeout_sec``; None: forever) for one callback and run it, or start
+        it: a subclass's ``_spin_once_impl`` (or its own ``spin_once``) says how."""
+        self._spin_once_impl(timeout_sec, _never)
 
     def spin_once_until_future_complete(
         self, future: Future, timeout_sec: float | None = None
     ) -> None:
         """As :meth:`spin_once`, returning early once ``future`` is done."""
+        future._add_waiter(self.wake)
+        self._spin_once_impl(timeout_sec, future.done)
+
+    def _spin_once_impl(self, timeout_sec: float | None, condition: Callable[[], bool]) -> None:
         raise NotImplementedError()
 
     def shutdown(self, timeout_sec: float | None = None) -> bool:

@@ -18,7 +18,6 @@ from launchkit.ros.executor import (
     ExternalShutdownException,
     ShutdownException,
     TimeoutException,
-    _never,
 )
 from launchkit.ros.task import Future, Task
 from launchkit.ros.task import await_or_execute as await_or_execute
@@ -32,21 +31,10 @@ class SingleThreadedExecutor(Executor):
             handler, _, _ = self.wait_for_ready_callbacks(timeout_sec, None, condition)
         except (ShutdownException, TimeoutException, ConditionReachedException):
             return
-        handler()
+        self._work_tracker.step(handler)
         exception = handler.exception()
         if exception is not None:
             raise exception
-
-    def spin_once(self, timeout_sec: float | None = None) -> None:
-        """Wait (up to ``timeout_sec``; None: forever) for one callback and run it."""
-        self._spin_once_impl(timeout_sec, _never)
-
-    def spin_once_until_future_complete(
-        self, future: Future, timeout_sec: float | None = None
-    ) -> None:
-        """As :meth:`spin_once`, returning early once ``future`` is done."""
-        future._add_waiter(self.wake)
-        self._spin_once_impl(timeout_sec, future.done)
 
 
 class MultiThreadedExecutor(Executor):
@@ -75,28 +63,17 @@ class MultiThreadedExecutor(Executor):
             ConditionReachedException,
         ):
             return
-        self._executor.submit(handler)
+        self._executor.submit(self._work_tracker.step, handler)
         self._futures.append(handler)
         for future in self._futures[:]:
             if future.done():
                 self._futures.remove(future)
                 future.result()  # a callback's exception is raised here, as rclpy does
 
-    def spin_once(self, timeout_sec: float | None = None) -> None:
-        """Wait for one callback and start it in the pool."""
-        self._spin_once_impl(timeout_sec, _never)
-
-    def spin_once_until_future_complete(
-        self, future: Future, timeout_sec: float | None = None
-    ) -> None:
-        """As :meth:`spin_once`, returning early once ``future`` is done."""
-        future._add_waiter(self.wake)
-        self._spin_once_impl(timeout_sec, future.done)
-
     def shutdown(self, timeout_sec: float | None = None) -> bool:
         """Stop, wait for the running callbacks, and stop the pool's threads."""
         done = super().shutdown(timeout_sec)
-        self._executor.shutdown(wait=done)
+        self._executor.shutdown(wait=done and not self._work_tracker.in_handler())
         return done
 
 

@@ -11,21 +11,21 @@ from rclpy_runs import Runs
 def talker_listener(runs: Runs) -> str:
     """A listener hears five messages of a talker (which waits for it), then exits; the
     talker is stopped with Ctrl-C."""
-    listener = runs.start("listener.py")
-    talker = runs.start("talker.py")
-    heard = listener.finish()
-    spoke = talker.finish(signal.SIGINT)
-    return _both(("listener", heard), ("talker", spoke))
+    return _ends_then_stops(runs, ("listener", "listener.py"), ("talker", "talker.py"))
 
 
 def service_and_client(runs: Runs) -> str:
     """A client calls a service with call_async and spin_until_future_complete, then from a
-    coroutine callback that awaits the call."""
-    server = runs.start("adder.py")
-    caller = runs.start("caller.py")
-    called = caller.finish()
-    served = server.finish(signal.SIGINT)
-    return _both(("caller", called), ("server", served))
+    coroutine callback that awaits the call; the server is stopped with Ctrl-C."""
+    return _ends_then_stops(runs, ("caller", "caller.py"), ("server", "adder.py"))
+
+
+def _ends_then_stops(runs: Runs, ends: tuple[str, str], stopped: tuple[str, str]) -> str:
+    """Run ``stopped`` and ``ends``; once ``ends`` has ended by itself, Ctrl-C ``stopped``."""
+    lasting = runs.start(stopped[1])
+    ending = runs.start(ends[1])
+    ended = ending.finish()
+    return _both((ends[0], ended), (stopped[0], lasting.finish(signal.SIGINT)))
 
 
 def callback_groups(runs: Runs) -> str:

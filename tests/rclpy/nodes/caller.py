@@ -12,8 +12,7 @@ def main() -> None:
     rclpy.init()
     node = Node("caller")
     client = node.create_client(SetBool, "toggle", callback_group=MutuallyExclusiveCallbackGroup())
-    while not client.wait_for_service(timeout_sec=1.0):
-        node.get_logger().info("service not available, waiting again...")
+    client.wait_for_service()  # however long the server takes to start (a busy machine)
     future = client.call_async(SetBool.Request(data=True))
     rclpy.spin_until_future_complete(node, future)
     response = future.result()

@@ -17,8 +17,8 @@ def main() -> None:
     )
     pub = node.create_publisher(String, "/status", qos)
     pub.publish(String(data="up"))
-    print("latched_listener ready", flush=True)
     try:
+        print("latched_listener ready", flush=True)
         ros.spin(node)
     except (KeyboardInterrupt, ros.ExternalShutdownException):
         pass

@@ -9,8 +9,8 @@ def main() -> None:
     ros.init()
     node = ros.Node("listener")
     node.create_subscription(String, "chatter", lambda m: print(f"heard: {m.data}", flush=True), 10)
-    print("listener ready", flush=True)
     try:
+        print("listener ready", flush=True)
         ros.spin(node)
     except (KeyboardInterrupt, ros.ExternalShutdownException):
         pass

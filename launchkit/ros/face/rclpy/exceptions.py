@@ -1,41 +1,4 @@
 """``rclpy.exceptions``: rclpy's exceptions."""
 
-from launchkit.ros.exceptions import (
-    InvalidHandle,
-    InvalidNamespaceException,
-    InvalidNodeNameException,
-    InvalidParameterException,
-    InvalidParameterTypeException,
-    InvalidParameterValueException,
-    InvalidServiceNameException,
-    InvalidTopicNameException,
-    NameValidationException,
-    NotInitializedException,
-    NoTypeSupportImportedException,
-    ParameterAlreadyDeclaredException,
-    ParameterException,
-    ParameterImmutableException,
-    ParameterNotDeclaredException,
-    ParameterUninitializedException,
-    ROSInterruptException,
-)
-
-__all__ = [
-    "InvalidHandle",
-    "InvalidNamespaceException",
-    "InvalidNodeNameException",
-    "InvalidParameterException",
-    "InvalidParameterTypeException",
-    "InvalidParameterValueException",
-    "InvalidServiceNameException",
-    "InvalidTopicNameException",
-    "NameValidationException",
-    "NoTypeSupportImportedException",
-    "NotInitializedException",
-    "ParameterAlreadyDeclaredException",
-    "ParameterException",
-    "ParameterImmutableException",
-    "ParameterNotDeclaredException",
-    "ParameterUninitializedException",
-    "ROSInterruptException",
-]
+from launchkit.ros.exceptions import *  # noqa: F403
+from launchkit.ros.exceptions import __all__ as __all__
