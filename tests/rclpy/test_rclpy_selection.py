@@ -130,3 +130,25 @@ def test_sitecustomize_runs_the_one_it_shadows(tmp_path: Path) -> None:
     lines = result.stdout.splitlines()
     assert lines[0] == "yes False"  # chained; no message package imported before it is asked
     assert "data=''" in lines[1]  # launchkit's std_msgs, not the installed one
+
+
+def test_every_face_module_imports_and_names_what_it_exports() -> None:
+    probe = (
+        "import importlib, pkgutil, rclpy\n"
+        "names = [m.name for m in pkgutil.walk_packages(rclpy.__path__, 'rclpy.')]\n"
+        "for name in names:\n"
+        "    module = importlib.import_module(name)\n"
+        "    missing = [n for n in getattr(module, '__all__', []) if not hasattr(module, n)]\n"
+        "    assert not missing, (name, missing)\n"
+        "print(len(names), rclpy.executors.MultiThreadedExecutor.__module__)\n"
+    )
+    result = subprocess.run(
+        [sys.executable, "-c", probe],
+        capture_output=True,
+        text=True,
+        env=_env(PYTHONPATH=str(face.path())),
+        timeout=120,
+    )
+    assert result.returncode == 0, result.stderr
+    count, where = result.stdout.split()
+    assert int(count) >= 30 and where == "launchkit.ros.executors"
