@@ -11,6 +11,8 @@ from launchkit.ros.params import Parameter, ParameterType, parameter_dict_from_y
 from launchkit.ros.qos import QoSProfile, qos_profile_parameter_events, qos_profile_services_default
 from launchkit.ros.task import Future
 
+Done = Callable[[Future], Any] | None  # what is called with the future when it completes
+
 _SERVICES = {
     "get": ("GetParameters", "get_parameters"),
     "list": ("ListParameters", "list_parameters"),
@@ -63,7 +65,7 @@ class AsyncParameterClient:
         """Wait for the remote node's parameter services; False after ``timeout_sec``."""
         return all(c.wait_for_service(timeout_sec) for c in self._clients.values())
 
-    def _call(self, key: str, callback: Callable[[Future], Any] | None, **fields: Any) -> Future:
+    def _call(self, key: str, callback: Done, **fields: Any) -> Future:
         client = self._clients[key]
         future: Future = client.call_async(client.srv_type.Request(**fields))
         if callback:
@@ -71,70 +73,49 @@ class AsyncParameterClient:
         return future
 
     def list_parameters(
-        self,
-        prefixes: list[str] | None = None,
-        depth: int | None = None,
-        callback: Callable[[Future], Any] | None = None,
+        self, prefixes: list[str] | None = None, depth: int | None = None, callback: Done = None
     ) -> Future:
         """A future of the ListParameters response."""
         return self._call("list", callback, prefixes=prefixes or [], depth=depth or 0)
 
-    def get_parameters(
-        self, names: list[str], callback: Callable[[Future], Any] | None = None
-    ) -> Future:
+    def get_parameters(self, names: list[str], callback: Done = None) -> Future:
         """A future of the GetParameters response."""
         return self._call("get", callback, names=names)
 
-    def set_parameters(
-        self, parameters: Sequence[Any], callback: Callable[[Future], Any] | None = None
-    ) -> Future:
-        """A future of the SetParameters response (Parameter objects or messages)."""
-        return self._call("set", callback, parameters=_messages(parameters))
-
-    def describe_parameters(
-        self, names: list[str], callback: Callable[[Future], Any] | None = None
-    ) -> Future:
+    def describe_parameters(self, names: list[str], callback: Done = None) -> Future:
         """A future of the DescribeParameters response."""
         return self._call("describe", callback, names=names)
 
-    def get_parameter_types(
-        self, names: list[str], callback: Callable[[Future], Any] | None = None
-    ) -> Future:
+    def get_parameter_types(self, names: list[str], callback: Done = None) -> Future:
         """A future of the GetParameterTypes response."""
         return self._call("types", callback, names=names)
 
-    def set_parameters_atomically(
-        self, parameters: Sequence[Any], callback: Callable[[Future], Any] | None = None
-    ) -> Future:
+    def set_parameters(self, parameters: Sequence[Any], callback: Done = None) -> Future:
+        """A future of the SetParameters response (Parameter objects or messages)."""
+        return self._call("set", callback, parameters=_messages(parameters))
+
+    def set_parameters_atomically(self, parameters: Sequence[Any], callback: Done = None) -> Future:
         """A future of the SetParametersAtomically response."""
         return self._call("atomic", callback, parameters=_messages(parameters))
 
-    def delete_parameters(
-        self, names: list[str], callback: Callable[[Future], Any] | None = None
-    ) -> Future:
+    def delete_parameters(self, names: list[str], callback: Done = None) -> Future:
         """Unset (dynamically typed) parameters: a future of the SetParameters response."""
         unset = [Parameter(name, ParameterType.NOT_SET) for name in names]
-        return self._call("set", callback, parameters=_messages(unset))
+        return self.set_parameters(unset, callback)
 
     def load_parameter_file(
-        self,
-        parameter_file: str,
-        use_wildcard: bool = False,
-        callback: Callable[[Future], Any] | None = None,
+        self, parameter_file: str, use_wildcard: bool = False, callback: Done = None
     ) -> Future:
         """Set the parameters of a params file: a future of the SetParameters response."""
         values = parameter_dict_from_yaml_file(parameter_file, use_wildcard)
-        return self.set_parameters(list(values.values()), callback=callback)
+        return self.set_parameters(list(values.values()), callback)
 
     def load_parameter_file_atomically(
-        self,
-        parameter_file: str,
-        use_wildcard: bool = False,
-        callback: Callable[[Future], Any] | None = None,
+        self, parameter_file: str, use_wildcard: bool = False, callback: Done = None
     ) -> Future:
         """Set the parameters of a params file all at once."""
         values = parameter_dict_from_yaml_file(parameter_file, use_wildcard)
-        return self.set_parameters_atomically(list(values.values()), callback=callback)
+        return self.set_parameters_atomically(list(values.values()), callback)
 
     def on_parameter_event(
         self,
