@@ -17,7 +17,7 @@ from launchkit.bridge.service_route import ServiceBridge
 from launchkit.bridge.topic_route import MissingTypeError, TopicBridge
 from launchkit.errors import RuntimeLaunchError, UserError
 from launchkit.ros.context import Context
-from launchkit.ros.executor import Executor
+from launchkit.ros.executors import SingleThreadedExecutor as ZenohExecutor
 from launchkit.ros.node import Node
 from launchkit.ros.qos import QoSProfile
 
@@ -98,7 +98,7 @@ class Bridge:
             num_threads=4, context=self._dds_context
         )
         self._dds_services_executor.add_node(self.dds_services_node)
-        self._zenoh_executor = Executor(context=self._zenoh_context)
+        self._zenoh_executor = ZenohExecutor(context=self._zenoh_context)
         self._zenoh_executor.add_node(self.zenoh_node)
         self._guard = EchoGuard()
         self._topics: dict[tuple[str, str], TopicBridge] = {}

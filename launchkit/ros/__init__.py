@@ -1,4 +1,5 @@
-"""launchkit.ros: an rclpy-like ROS 2 node API over Zenoh, with the real ROS 2 message types.
+"""launchkit.ros: rclpy's API and behaviour over Zenoh, with the real ROS 2 message types
+(``import rclpy`` gets it through the face, :mod:`launchkit.ros.face`).
 
 ::
 
@@ -9,8 +10,11 @@
     node = ros.Node("talker")
     pub = node.create_publisher(String, "chatter", 10)
     node.create_timer(0.5, lambda: pub.publish(String(data="hello")))
-    ros.spin(node)
-    ros.shutdown()
+    try:
+        ros.spin(node)
+    except KeyboardInterrupt:  # Ctrl-C shuts ROS down and raises it, as in rclpy
+        pass
+    ros.try_shutdown()
 
 Nodes connect to the Zenoh router at ``$LAUNCHKIT_ROUTER`` (default tcp/127.0.0.1:7447, the one
 ``launchkit run`` hosts) and follow rmw_zenoh's wire conventions.

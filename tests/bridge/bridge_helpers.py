@@ -78,7 +78,7 @@ class LaunchkitPeer:
         self.context = ros.Context(router=router)
         self.context.init([], domain_id)
         self.node = ros.Node(name, context=self.context)
-        self._executor = ros.Executor(context=self.context)
+        self._executor = ros.SingleThreadedExecutor(context=self.context)
         self._executor.add_node(self.node)
         self._stop = threading.Event()
         self._thread = threading.Thread(target=self._spin, daemon=True)
