@@ -104,8 +104,11 @@ class _Entity:
     def _announce(self) -> None:
         self._token = self.node.context.session.liveliness().declare_token(self.token_key)
         # follow the graph from the first publisher or subscription on, so that graph queries
-        # soon after (get_node_names, get_subscription_count) find it already filled
-        _ = self.node.context.graph
+        # soon after (get_node_names, get_subscription_count) find it already filled; not in a
+        # command's client session (every node has a /parameter_events publisher), where it
+        # would answer the command's own one-off graph queries only in part
+        if not self.node.context.client:
+            _ = self.node.context.graph
 
     def _set_event_callbacks(self, callbacks: Any) -> None:
         """Start the event handlers ``callbacks`` asks for (the matched event)."""
