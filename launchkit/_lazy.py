@@ -1,5 +1,7 @@
-"""Package attributes imported when first asked for (PEP 562), so that a command imports only
-the modules it uses: one ``__getattr__`` for every package that defers its imports."""
+"""Package attributes imported when first asked for (PEP 562): one ``__getattr__`` for the two
+packages every node process imports, ``launchkit`` (its API would load the launch engine, a
+fifth of a node's start-up) and ``launchkit.ros`` (its node API would load the message types,
+numpy and rosbags into the launcher, which imports only ``launchkit.ros.router``)."""
 
 from __future__ import annotations
 

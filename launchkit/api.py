@@ -10,6 +10,7 @@ from collections.abc import Mapping
 from pathlib import Path
 from typing import IO, TYPE_CHECKING
 
+from launchkit.bridge.launch import add_bridge
 from launchkit.checks import CheckedTree, check_tree, static_path, undeclared_arguments
 from launchkit.description.actions import DeclareArgument, Include
 from launchkit.description.actions.base import Action
@@ -17,13 +18,15 @@ from launchkit.description.launch_context import LaunchContext, Runner
 from launchkit.description.launch_description import LaunchDescription
 from launchkit.description.ros_link import RosLink
 from launchkit.errors import LaunchkitError, PackageNotFoundError, UserError
-from launchkit.frontend.launch_loader import LaunchLoader, collector_paused
+from launchkit.frontend.launch_loader import LaunchLoader
 from launchkit.packages import PackageIndex, is_file
 from launchkit.runtime.hooks import SupervisorHooks
+from launchkit.runtime.logdir import create_run_dir
+from launchkit.runtime.recorder import Recorded, Recorder, count, render
+from launchkit.runtime.signals import held, raising
 
 if TYPE_CHECKING:
     from launchkit.runtime.network import RouterOptions
-    from launchkit.runtime.recorder import Recorded
 
 
 def resolve_launch_file(target: str, filename: str | None, packages: PackageIndex) -> Path:
@@ -76,8 +79,6 @@ def _context(
     def run_dir() -> Path:
         nonlocal log_dir
         if log_dir is None:
-            from launchkit.runtime.logdir import create_run_dir
-
             run = create_run_dir(os.environ)
             run.release()  # nothing runs (--print): later runs may prune it
             log_dir = run.path
@@ -96,13 +97,17 @@ def _context(
 def launch_environment(environ: Mapping[str, str]) -> dict[str, str]:
     """The environment a launch starts with: ``environ``, with the folder of launchkit's own
     scripts (``xacro`` beside ``launchkit``) at the end of ``PATH`` when it is not there, so
-    ``Command(['xacro ', ...])`` works from an environment that was not activated."""
+    ``Command(['xacro ', ...])`` works from an environment that was not activated; and after it
+    a ``ros2`` for launch files that call one, when none is installed
+    (:mod:`launchkit.ros_cli.ros2_shim`)."""
+    from launchkit.ros_cli.ros2_shim import with_ros2
+
     environment = dict(environ)
     scripts = sysconfig.get_path("scripts")
     folders = environment.get("PATH", os.defpath).split(os.pathsep)
     if scripts and scripts not in folders:
         environment["PATH"] = os.pathsep.join([*folders, scripts])
-    return environment
+    return with_ros2(environment)
 
 
 def dry_run(
@@ -112,47 +117,35 @@ def dry_run(
     file is loaded, every package and executable looked up, every ``$(command)`` run. What it
     would start is recorded (timers' actions at once); errors are raised as ``run`` raises
     them. ``bridge`` adds ``launchkit bridge`` as ``run(bridge=True)`` does."""
-    from launchkit.runtime.recorder import Recorder
-    from launchkit.runtime.signals import held, raising
-
     arguments = dict(arguments or {})
     packages, loader = PackageIndex(), LaunchLoader()
-    # one pause of the cycle collector for reading, checking and evaluating: between phases
-    # it would pass over every object a large file built (Python files' code still has it)
-    with collector_paused():
-        tree = check_tree(path, arguments, loader, packages)
-        if bridge:
-            from launchkit.bridge.launch import add_bridge
-
-            add_bridge(tree.top, arguments)
-        recorder = Recorder()
-        context = _context(recorder, arguments, packages, loader, None)
-        recorder.context = context
-        context.uninterrupted = held
-        context.delivers_events = False  # nothing drains them: handlers' actions are recorded
-        try:
-            with raising(), context.in_file(tree.top.path):
-                for action in tree.top.actions:
-                    action.visit(context)
-            return tree, recorder.items
-        finally:
-            context.cleanup()
+    tree = check_tree(path, arguments, loader, packages)
+    if bridge:
+        add_bridge(tree.top, arguments)
+    recorder = Recorder()
+    context = _context(recorder, arguments, packages, loader, None)
+    recorder.context = context
+    context.uninterrupted = held
+    context.delivers_events = False  # nothing drains them: handlers' actions are recorded
+    try:
+        with raising(), context.in_file(tree.top.path):
+            for action in tree.top.actions:
+                action.visit(context)
+        return tree, recorder.items
+    finally:
+        context.cleanup()
 
 
 def describe(
     path: Path, arguments: Mapping[str, str] | None = None, *, bridge: bool = False
 ) -> str:
     """What running ``path`` would do (processes with command lines, env changes, timers)."""
-    from launchkit.runtime.recorder import render
-
     return render(dry_run(path, arguments, bridge=bridge)[1])
 
 
 def check_report(path: Path, arguments: Mapping[str, str] | None = None) -> str:
     """``launchkit check``: check ``path`` and evaluate it as ``--print`` does (packages,
     included files, commands), then say what was checked and what was not."""
-    from launchkit.runtime.recorder import count
-
     tree, items = dry_run(path, arguments)
     processes, timers = count(items)
     report = (
@@ -249,8 +242,10 @@ def run(
             expected="a call from the main thread, which alone receives signals (Ctrl-C)",
             hint="to launch from a worker thread, start `launchkit run FILE` as a subprocess",
         )
+    # what only running needs (the supervisor, its output, the router, other hosts): imported
+    # here, as a check never runs anything (about 6 % of checking the seed's launch file)
     from launchkit.remote.launch import RemoteLaunch
-    from launchkit.runtime.logdir import LogLimits, create_run_dir
+    from launchkit.runtime.logdir import LogLimits
     from launchkit.runtime.network import NodeNetwork
     from launchkit.runtime.output import Output
     from launchkit.runtime.supervisor import Supervisor
@@ -268,8 +263,6 @@ def run(
     try:
         tree = check_tree(path, arguments, loader, packages)
         if bridge:
-            from launchkit.bridge.launch import add_bridge
-
             add_bridge(tree.top, arguments)
         output.launch_line("INFO", "launch", f"All log files can be found below {run_dir.path}")
         for name in undeclared_arguments(tree, arguments):
@@ -284,6 +277,8 @@ def run(
         context = _context(supervisor, arguments, packages, loader, run_dir.path)
 
         def ros_link() -> RosLink:
+            # imported when a lifecycle or composable node first needs the launcher's own ROS
+            # node: the ROS layer (numpy, zenoh, the message types) is most of a second
             from launchkit.ros_adapter import RosAdapter
 
             return RosAdapter(lambda: network.ensure(supervisor), context.post)
@@ -291,7 +286,7 @@ def run(
         context.ros_factory = ros_link
         return supervisor.run(tree.top, context)
     except LaunchkitError as error:
-        output.launch_line("ERROR", "launch", error.format(), screen=False)
+        output.launch_error(error.format(), screen=False)
         raise
     finally:
         remote.close()

@@ -2,16 +2,18 @@
 
 Parsing already rejects unknown tags, attributes and substitutions, malformed substitutions and
 bad literal values. On top of that this module loads every ``<include>`` whose path is known
-without running anything, and checks the command-line arguments against the top file's
-``<arg>`` declarations (required ones present, values among the choices).
+without running anything (one under an ``if``/``unless`` that fails to load is no error: ROS
+reads it the same way for its arguments and reports nothing; the include reports it if and when
+it runs), and checks the command-line arguments against the top file's ``<arg>`` declarations
+(required ones present, values among the choices).
 """
 
 from __future__ import annotations
 
 from collections.abc import Mapping
+from dataclasses import fields, is_dataclass
 from pathlib import Path
 
-from launchkit._record import Record
 from launchkit.description.actions import DeclareArgument, Include
 from launchkit.description.actions.base import Action
 from launchkit.description.launch_description import LaunchDescription, walk
@@ -42,32 +44,19 @@ class CheckedTree:
     def __init__(self, top: LaunchDescription) -> None:
         self.top = top
         self.files: dict[Path, LaunchDescription] = {top.path: top}
-        # each file's walk, with how many top-level actions it had then (a large file's
-        # check would otherwise walk its actions several times)
-        self._walks: dict[Path, tuple[int, list[Action]]] = {}
-
-    def walked(self, description: LaunchDescription) -> list[Action]:
-        """Every action of ``description`` (one of the files), depth first: walked once, and
-        again only when actions were added at its top level since (``--bridge`` adds one)."""
-        known = self._walks.get(description.path)
-        if known is not None and known[0] == len(description.actions):
-            return known[1]
-        actions = walk(description.actions)
-        self._walks[description.path] = (len(description.actions), actions)
-        return actions
 
     @property
     def entity_count(self) -> int:
         """How many actions the checked files hold."""
-        return sum(len(self.walked(d)) for d in self.files.values())
+        return sum(len(walk(d.actions)) for d in self.files.values())
 
     def has_conditions(self) -> bool:
         """Whether any action of the checked files has an ``if`` or ``unless``."""
-        for description in self.files.values():
-            for action in self.walked(description):
-                if action.condition is not None:
-                    return True
-        return False
+        return any(
+            action.condition is not None
+            for description in self.files.values()
+            for action in walk(description.actions)
+        )
 
 
 def parse_launch_arguments(items: list[str]) -> dict[str, str]:
@@ -101,15 +90,16 @@ def check_tree(
     while pending:
         description = pending.pop()
         chain = chains[description.path]
-        for action in tree.walked(description):
+        for action in walk(description.actions):
             if not isinstance(action, Include):
                 continue
             included = static_path(action, description.path, packages)
             if included is None or included in tree.files:
                 continue
+            always = _always_runs(action, description)
             try:
                 if not is_file(included):
-                    if _always_runs(action, description):
+                    if always:
                         raise LaunchFileError(
                             f"included launch file '{included}' does not exist",
                             action.location,
@@ -118,6 +108,11 @@ def check_tree(
                     continue  # conditional: reported if and when the include runs
                 child = loader.load(included, action.location, action.syntax)
             except LaunchkitError as error:
+                if not always:
+                    # As ROS's look for declared arguments: a file under an if/unless is read
+                    # (a Python one's code runs), and what fails is reported only if and when
+                    # the include runs
+                    continue
                 for place in reversed([*chain, action.location]):
                     if place is not None:
                         error.included_from(place)
@@ -126,7 +121,7 @@ def check_tree(
             chains[child.path] = [*chain, *([action.location] if action.location else [])]
             pending.append(child)
     if arguments is not None:
-        check_arguments(tree.top, arguments, tree.walked(tree.top))
+        check_arguments(tree.top, arguments)
     return tree
 
 
@@ -180,17 +175,12 @@ def _static_text(part: Substitution, current: Path, packages: PackageIndex) -> s
     return None
 
 
-def check_arguments(
-    top: LaunchDescription, arguments: Mapping[str, str], walked: list[Action] | None = None
-) -> None:
-    """Required top-level arguments are given and given values are among the choices
-    (``walked``: ``top``'s actions walked, when known)."""
+def check_arguments(top: LaunchDescription, arguments: Mapping[str, str]) -> None:
+    """Required top-level arguments are given and given values are among the choices."""
     for required in top.required_arguments():
         if required.name not in arguments:
             raise required.missing_error()
-    if walked is None:
-        walked = walk(top.actions)
-    for declared in [a for a in walked if isinstance(a, DeclareArgument)]:
+    for declared in top.declared_arguments():
         value = arguments.get(declared.name)
         if value is not None:
             declared.check_choice(value)
@@ -233,8 +223,6 @@ def _var_names(value: object) -> set[str]:
             names.add(name)
     elif hasattr(value, "args") and isinstance(value, Substitution):
         names |= _var_names(getattr(value, "args", ()))
-    elif isinstance(value, Record):  # a condition, an include's <arg>, a <keep>
-        names |= _var_names(list(value.fields()))
-    elif hasattr(value, "__dataclass_fields__"):  # the values of a node's tags
-        names |= _var_names([getattr(value, name) for name in value.__dataclass_fields__])
+    elif is_dataclass(value):  # a condition, an include's <arg>, a <keep>, a node's <param>
+        names |= _var_names([getattr(value, field.name) for field in fields(value)])
     return names

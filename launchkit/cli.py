@@ -10,12 +10,11 @@ a signal interrupted (130 for Ctrl-C while parsing or ``--print``).
 from __future__ import annotations
 
 import argparse
-import gc
 import os
 import signal
 import sys
 from pathlib import Path
-from typing import TYPE_CHECKING, NoReturn
+from typing import TYPE_CHECKING, Any, NoReturn
 
 from launchkit._argparse import CommandParser
 from launchkit._exit import exit_promptly
@@ -24,7 +23,20 @@ from launchkit.errors import LaunchkitError, UserError, printable
 if TYPE_CHECKING:
     from launchkit.runtime.hooks import SupervisorHooks
 
-ROS_COMMANDS = ("topic", "node", "service", "param", "interface", "router")
+#: ``ros2``'s verbs that ``launchkit.ros_cli`` implements (``launchkit <verb> ...``), and
+#: launchkit's own ``router`` and ``tf``
+ROS_COMMANDS = (
+    "topic",
+    "node",
+    "service",
+    "param",
+    "interface",
+    "pkg",
+    "doctor",
+    "wtf",
+    "router",
+    "tf",
+)
 
 
 def _launch_parser(prog: str, description: str) -> CommandParser:
@@ -40,17 +52,13 @@ def _launch_parser(prog: str, description: str) -> CommandParser:
     return parser
 
 
-def build_parser() -> argparse.ArgumentParser:
-    """The top-level parser (the ROS commands are parsed by ``launchkit.ros_cli.main``)."""
-    parser = CommandParser(
-        prog="launchkit", description="Run ROS 2 XML launch files without a ROS install."
-    )
-    commands = parser.add_subparsers(dest="command", metavar="COMMAND")
+def _add_launch_command(commands: Any, name: str, help_text: str) -> None:
+    """``launchkit run`` and its ros2 spelling ``launchkit launch``: the same command."""
     run = commands.add_parser(
-        "run",
-        help="run a launch file",
+        name,
+        help=help_text,
         add_help=False,
-        parents=[_launch_parser("launchkit run", "Run a launch file.")],
+        parents=[_launch_parser(f"launchkit {name}", "Run a launch file.")],
     )
     run.add_argument(
         "-p",
@@ -92,26 +100,31 @@ def build_parser() -> argparse.ArgumentParser:
     )
     # launchkit.testing's event channel (launchkit/runtime/events.py): not for people
     run.add_argument("--events-fd", type=int, help=argparse.SUPPRESS)
+
+
+def build_parser() -> argparse.ArgumentParser:
+    """The top-level parser (the ROS commands are parsed by ``launchkit.ros_cli.main``)."""
+    parser = CommandParser(
+        prog="launchkit", description="Run ROS 2 XML launch files without a ROS install."
+    )
+    commands = parser.add_subparsers(dest="command", metavar="COMMAND")
+    for name, what in (("run", "run a launch file"), ("launch", "run a launch file (ros2's name)")):
+        _add_launch_command(commands, name, what)
     commands.add_parser(
         "check",
         help="check a launch file as --print would (packages, includes, commands); run nothing",
         add_help=False,
         parents=[_launch_parser("launchkit check", "Check a launch file as --print would.")],
     )
-    pkg = commands.add_parser("pkg", help="packages: list, prefix, executables")
-    pkg_commands = pkg.add_subparsers(dest="pkg_command", metavar="SUBCOMMAND", required=True)
-    pkg_commands.add_parser("list", help="list known packages")
-    prefix = pkg_commands.add_parser("prefix", help="a package's prefix")
-    prefix.add_argument("package")
-    share = pkg_commands.add_parser("share", help="a package's share directory")
-    share.add_argument("package")
-    executables = pkg_commands.add_parser("executables", help="a package's executables")
-    executables.add_argument("package")
     exec_ = commands.add_parser(
         "exec",
-        help="run one executable of a package (like ros2 run), or a Python file with --python",
-        usage="launchkit exec PACKAGE EXECUTABLE [ARGS...]\n"
+        help="run one executable of a package (ros2 run; `launchkit run PKG EXEC` too), or a "
+        "Python file with --python",
+        usage="launchkit exec [--prefix CMD] PACKAGE EXECUTABLE [ARGS...]\n"
         "       launchkit exec --python FILE [ARGS...]",
+    )
+    exec_.add_argument(
+        "--prefix", help="a command to run it under, in quotes (e.g. --prefix 'gdb -ex run --args')"
     )
     exec_.add_argument("package")
     exec_.add_argument("executable")
@@ -120,20 +133,23 @@ def build_parser() -> argparse.ArgumentParser:
     commands.add_parser(
         "agent", help="run this host's share of launches on other hosts (launchkit agent --help)"
     )
+    special = {
+        "pkg": "packages: list, prefix, executables, xml (see launchkit pkg --help)",
+        "doctor": "check the ROS setup, as ros2 doctor (see launchkit doctor --help)",
+        "wtf": "the same as doctor",
+    }
     for name in ROS_COMMANDS:
-        commands.add_parser(
-            name, help=f"ROS {name} tools (see launchkit {name} --help)", add_help=False
-        )
+        what = special.get(name, f"ROS {name} tools (see launchkit {name} --help)")
+        commands.add_parser(name, help=what, add_help=False)
     commands.add_parser("bag", help="record and play rosbag2 bags (see launchkit bag --help)")
     commands.add_parser(
         "build", help="build a ROS 2 workspace's src/ into install/ (see launchkit build --help)"
     )
+    commands.add_parser(
+        "shell-init",
+        help='a `ros2` command for your shell: eval "$(launchkit shell-init)" (see docs/ros.md)',
+    )
     return parser
-
-
-#: Whether this process ends when the command does (the console script), or calls it in
-#: process (tests, ``main``'s callers).
-_PROCESS_ENDS_AFTER = False
 
 
 def main(argv: list[str] | None = None) -> int:
@@ -155,6 +171,8 @@ def main(argv: list[str] | None = None) -> int:
         from launchkit.workspace.cli import main as build_main
 
         return _guarded(lambda: build_main(argv[1:]), debug="--debug" in argv)
+    if argv and argv[0] == "run" and _runs_an_executable(argv[1:]):
+        argv = ["exec", *argv[1:]]  # ros2 run's spelling: launchkit run PKG EXEC [args]
     if argv[:2] == ["exec", "--python"]:
         return _guarded(lambda: _exec_python(argv[2:]), debug=False)
     args = build_parser().parse_args(argv)
@@ -168,8 +186,6 @@ def console_main() -> NoReturn:
     """The ``launchkit`` console script: :func:`main`, then a prompt exit with its status (the
     interpreter's own teardown would delay the exit by up to seconds on a busy machine; see
     :mod:`launchkit._exit`)."""
-    global _PROCESS_ENDS_AFTER
-    _PROCESS_ENDS_AFTER = True
     exit_promptly(main())
 
 
@@ -207,8 +223,11 @@ def _bag_command(argv: list[str]) -> int:
 def _dispatch(args: argparse.Namespace) -> int:
     from launchkit.packages import PackageIndex
 
-    if args.command == "pkg":
-        return _pkg(args, PackageIndex())
+    if args.command == "shell-init":
+        from launchkit.ros_cli.ros2_shim import shell_init
+
+        print(shell_init())
+        return 0
     if args.command == "exec":
         return _exec(args, PackageIndex())
     if getattr(args, "events_fd", None) is not None:
@@ -251,10 +270,6 @@ def _launch(args: argparse.Namespace, hooks: SupervisorHooks | None = None) -> i
     packages = PackageIndex()
     path = api.resolve_launch_file(files[0], files[1] if with_package else None, packages)
     try:
-        if _PROCESS_ENDS_AFTER and (args.command == "check" or args.print_description):
-            # the process ends with os._exit after this: a collection of every object a large
-            # file built (once the check's pause ends) would be half a second for nothing
-            gc.disable()
         if args.command == "check":
             _print(api.check_report(path, arguments))
             return 0
@@ -288,6 +303,32 @@ def _launch(args: argparse.Namespace, hooks: SupervisorHooks | None = None) -> i
         raise
 
 
+def _runs_an_executable(items: list[str]) -> bool:
+    """Whether ``launchkit run ITEMS`` is ros2 run's ``run PKG EXEC [args]`` rather than a launch
+    file's ``run [PKG] FILE [name:=value]``: ``--prefix`` first, or a package and one of its
+    executables that is not also one of its launch files."""
+    from launchkit.errors import PackageNotFoundError
+    from launchkit.packages import PackageIndex
+
+    if items[:1] == ["--prefix"] or any(item.startswith("--prefix=") for item in items[:1]):
+        return True
+    if len(items) < 2 or any(i.startswith("-") or ":=" in i for i in items[:2]):
+        return False
+    package, name = items[0], items[1]
+    if _names_a_file(package):
+        return False
+    index = PackageIndex()
+    try:
+        index.launch_file(package, name)
+        return False
+    except PackageNotFoundError:
+        pass
+    try:
+        return name in index.executables(package)
+    except PackageNotFoundError:
+        return False
+
+
 def _names_a_file(item: str) -> bool:
     """Whether ``launchkit run ITEM ...`` names a launch file, not a package: an existing file,
     or a name with a dot or a slash, which a package's name never has (REP 144)."""
@@ -301,27 +342,16 @@ def _print(report: str) -> None:
     print("\n".join(printable(line) for line in report.split("\n")))
 
 
-def _pkg(args: argparse.Namespace, packages: object) -> int:
-    from launchkit.packages import PackageIndex
-
-    assert isinstance(packages, PackageIndex)
-    if args.pkg_command == "list":
-        print("\n".join(packages.names()))
-    elif args.pkg_command == "prefix":
-        print(packages.prefix(args.package))
-    elif args.pkg_command == "share":
-        print(packages.share_dir(args.package))
-    else:
-        for name in packages.executables(args.package):
-            print(f"{args.package} {name}")
-    return 0
-
-
 def _exec(args: argparse.Namespace, packages: object) -> int:
+    """``launchkit exec [--prefix CMD] PKG EXEC [args]`` (ros2 run): this process becomes the
+    executable (see :func:`_run_as_child`)."""
+    import shlex
+
     from launchkit.packages import PackageIndex
 
     assert isinstance(packages, PackageIndex)
-    _run_as_child(packages.executable(args.package, args.executable) + list(args.args))
+    prefix = shlex.split(args.prefix) if args.prefix else []
+    _run_as_child(prefix + packages.executable(args.package, args.executable) + list(args.args))
     return 0  # not reached
 
 
@@ -339,14 +369,18 @@ def _exec_python(argv: list[str]) -> int:
 
 
 def _run_as_child(argv: list[str]) -> None:
-    """Replace this process by ``argv``, in the environment launchkit gives its processes."""
+    """Replace this process by ``argv``, in the environment launchkit gives its processes: a
+    ``ros2`` on its PATH if it has none (:mod:`launchkit.ros_cli.ros2_shim`), and the rclpy
+    chosen for it (:mod:`launchkit.ros.face`)."""
     from launchkit.ros.face import child_environment
+    from launchkit.ros_cli.ros2_shim import with_ros2
 
+    os.environ.update(with_ros2(os.environ))
     os.environ.update(child_environment(argv, os.environ))
     os.environ.setdefault("PYTHONUNBUFFERED", "1")
     sys.stdout.flush()
     try:
-        os.execv(argv[0], argv)
+        os.execvp(argv[0], argv)  # the executable's path is absolute; a prefix's is looked up
     except OSError as error:
         raise UserError(f"cannot run '{argv[0]}': {error.strerror}") from None
 

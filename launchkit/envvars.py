@@ -43,6 +43,10 @@
 ``LAUNCHKIT_RUN_TMPDIR``              a private folder of the launch, set by ``launchkit run`` for
                                       its processes: files put there are removed when the launch
                                       ends, even if the launcher is killed
+``LAUNCHKIT_STANDINS``               where launchkit's stand-ins for ROS packages (rviz2,
+                                      robot_state_publisher, gazebo_ros, ...) come: ``auto``
+                                      (default) after installed packages of the same name,
+                                      ``prefer`` before them, ``never`` not at all
 ``LAUNCHKIT_SUPERVISOR_SOCKET``       the launcher's child-request socket, set by ``launchkit run``
                                       for its processes (:mod:`launchkit.runtime.supervisor_client`)
 ``LAUNCHKIT_TIMEOUT_SCALE``           multiplies every wait of the pytest plugin (slow machines)
@@ -62,6 +66,7 @@ LOG_RUN_MB = "LAUNCHKIT_LOG_RUN_MB"
 LOG_KEEP_RUNS = "LAUNCHKIT_LOG_KEEP_RUNS"
 ROUTER = "LAUNCHKIT_ROUTER"
 RUN_TMPDIR = "LAUNCHKIT_RUN_TMPDIR"
+STANDINS = "LAUNCHKIT_STANDINS"
 ROUTER_LISTEN = "LAUNCHKIT_ROUTER_LISTEN"
 ROUTER_CONNECT = "LAUNCHKIT_ROUTER_CONNECT"
 ROUTER_TLS = "LAUNCHKIT_ROUTER_TLS"

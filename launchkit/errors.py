@@ -19,8 +19,7 @@ from __future__ import annotations
 
 import difflib
 from collections.abc import Iterable
-
-from launchkit._record import Frozen, slot_setters
+from dataclasses import dataclass
 
 _NAMED_CONTROLS = {"\n": "\\n", "\r": "\\r", "\0": "\\0"}
 #: Control characters (C0 but tab, DEL, C1) as escapes: a name or a file must not be able to
@@ -44,18 +43,13 @@ def did_you_mean(name: str, choices: Iterable[str]) -> str | None:
     return f"did you mean '{close[0]}'?" if close else None
 
 
-class Location(Frozen):
+@dataclass(frozen=True)
+class Location:
     """Where in a launch file something is: 1-based line and column (0 when unknown)."""
 
-    __slots__ = ("col", "file", "line")  # a large file has one per element and value
     file: str
-    line: int
-    col: int
-
-    def __init__(self, file: str, line: int = 0, col: int = 0) -> None:
-        _set_file(self, file)
-        _set_line(self, line)
-        _set_col(self, col)
+    line: int = 0
+    col: int = 0
 
     def __str__(self) -> str:
         if self.line and self.col:
@@ -69,9 +63,6 @@ class Location(Frozen):
         if not self.line or not self.col:
             return self
         return Location(self.file, self.line, self.col + offset)
-
-
-_set_file, _set_line, _set_col = slot_setters(Location)
 
 
 class LaunchkitError(Exception):

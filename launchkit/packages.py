@@ -1,12 +1,17 @@
 """The package index: where a package's share directory and executables are.
 
-Two sources, searched in this order:
+Three sources, searched in this order:
 
 1. Python distributions that register a :class:`PythonPackage` in the ``launchkit.packages``
-   entry-point group (launchkit registers its stock packages and ``robot_wheel`` this way);
+   entry-point group (``robot_wheel`` and a user's own packages come this way);
 2. ``AMENT_PREFIX_PATH`` prefixes laid out as ROS lays them out
    (``PREFIX/share/ament_index/resource_index/packages/PKG``, ``PREFIX/share/PKG``,
-   ``PREFIX/lib/PKG/EXEC``), so a real ROS 2 install works unchanged.
+   ``PREFIX/lib/PKG/EXEC``), so a real ROS 2 install or a built workspace works unchanged;
+3. launchkit's stand-ins for ROS packages (``stand_in=True``, registered the same way as 1.),
+   which serve where no real package of the name is installed.
+
+``$LAUNCHKIT_STANDINS`` changes 3.'s place: ``prefer`` puts the stand-ins first (before 1. and
+2.), ``never`` leaves them out; ``auto`` (the default) is the order above.
 """
 
 from __future__ import annotations
@@ -14,15 +19,20 @@ from __future__ import annotations
 import os
 import sys
 from collections.abc import Mapping
+from dataclasses import KW_ONLY, dataclass, field
+from importlib.metadata import entry_points
 from pathlib import Path
 
-from launchkit._record import Frozen
-from launchkit.errors import PackageNotFoundError
+from launchkit.envvars import STANDINS
+from launchkit.errors import LaunchArgumentError, PackageNotFoundError
 
 ENTRY_POINT_GROUP = "launchkit.packages"
 
 #: Folders of a share directory searched for launch files, in order.
 LAUNCH_FOLDERS = ("", "launch", "launch_xml")
+
+#: The values of ``$LAUNCHKIT_STANDINS``: where launchkit's stand-ins come among the sources.
+STANDIN_POLICIES = ("auto", "prefer", "never")
 
 
 def is_file(path: Path) -> bool:
@@ -42,52 +52,34 @@ def exists(path: Path) -> bool:
         return False
 
 
-class PythonPackage(Frozen):
+@dataclass(frozen=True)
+class PythonPackage:
     """A ROS-style package provided by a Python distribution.
 
     ``executables`` maps an executable name (what ``<node exec=...>`` names) to the Python
     module that runs it as ``python -m MODULE``. ``programs`` maps a program launch files call
     by bare name (``gazebo``, ``rviz2``) to the executable that stands in for it when no such
-    program is on the PATH.
+    program is on the PATH. ``stand_in``: launchkit's stand-in for a ROS package, which a real
+    package of the same name wins over (see the module).
     """
 
-    __slots__ = ("executables", "name", "programs", "share")
     name: str
     share: Path
-    executables: Mapping[str, str]
-    programs: Mapping[str, str]
-
-    def __init__(
-        self,
-        name: str,
-        share: Path,
-        executables: Mapping[str, str] | None = None,
-        programs: Mapping[str, str] | None = None,
-    ) -> None:
-        object.__setattr__(self, "name", name)
-        object.__setattr__(self, "share", share)
-        object.__setattr__(self, "executables", {} if executables is None else executables)
-        object.__setattr__(self, "programs", {} if programs is None else programs)
+    executables: Mapping[str, str] = field(default_factory=dict)
+    programs: Mapping[str, str] = field(default_factory=dict)
+    _: KW_ONLY
+    stand_in: bool = False
 
 
-class FoundPackage(Frozen):
+@dataclass(frozen=True)
+class FoundPackage:
     """A package as the index found it: where it lives and which source it came from."""
 
-    __slots__ = ("name", "prefix", "python", "share", "source")
     name: str
     prefix: Path
     share: Path
     source: str
-    python: PythonPackage | None
-
-    def __init__(
-        self, name: str, prefix: Path, share: Path, source: str, python: PythonPackage | None = None
-    ) -> None:
-        object.__setattr__(self, "name", name)
-        object.__setattr__(self, "prefix", prefix)
-        object.__setattr__(self, "share", share)
-        object.__setattr__(self, "source", source)
-        object.__setattr__(self, "python", python)
+    python: PythonPackage | None = None
 
 
 class PackageIndex:
@@ -97,12 +89,14 @@ class PackageIndex:
         self,
         ament_prefix_path: str | None = None,
         python_packages: Mapping[str, PythonPackage] | None = None,
+        stand_ins: str | None = None,
     ) -> None:
         if ament_prefix_path is None:
             ament_prefix_path = os.environ.get("AMENT_PREFIX_PATH", "")
         self._prefixes = [Path(p) for p in ament_prefix_path.split(os.pathsep) if p]
         self._python = python_packages
         self._cache: dict[str, FoundPackage | None] = {}
+        self.stand_ins = stand_in_policy(stand_ins)
 
     # -- sources -----------------------------------------------------------------------------
 
@@ -142,9 +136,19 @@ class PackageIndex:
 
     def _lookup(self, name: str) -> FoundPackage | None:
         python = self.python_packages().get(name)
+        stand_in = None
+        if python is not None and python.stand_in:
+            python, stand_in = None, python
+            if self.stand_ins == "never":
+                stand_in = None
+        if stand_in is not None and self.stand_ins == "prefer":
+            return FoundPackage(name, stand_in.share, stand_in.share, "stand-in", stand_in)
         if python is not None:
             return FoundPackage(name, python.share, python.share, "python", python)
-        return self._ament_package(name)
+        found = self._ament_package(name)
+        if found is None and stand_in is not None:
+            return FoundPackage(name, stand_in.share, stand_in.share, "stand-in", stand_in)
+        return found
 
     def describe_search_path(self) -> str:
         """Human-readable list of the places packages are searched for."""
@@ -153,11 +157,17 @@ class PackageIndex:
             places.append("AMENT_PREFIX_PATH=" + os.pathsep.join(map(str, self._prefixes)))
         else:
             places.append("AMENT_PREFIX_PATH (not set)")
+        if self.stand_ins == "never":
+            places.append(f"not launchkit's stand-ins ({STANDINS}=never)")
         return ", ".join(places)
 
     def names(self) -> list[str]:
         """Every known package name, sorted."""
-        names = set(self.python_packages())
+        names = {
+            name
+            for name, package in self.python_packages().items()
+            if not (package.stand_in and self.stand_ins == "never")
+        }
         for prefix in self._prefixes:
             index = prefix / "share" / "ament_index" / "resource_index" / "packages"
             if index.is_dir():
@@ -195,7 +205,10 @@ class PackageIndex:
 
     def stand_in(self, program: str) -> tuple[str, list[str]] | None:
         """The package and argv prefix of launchkit's stand-in for bare program name
-        ``program`` (``gazebo`` -> gazebo_ros's server), or None."""
+        ``program`` (``gazebo`` -> gazebo_ros's server), or None (always with
+        ``$LAUNCHKIT_STANDINS=never``)."""
+        if self.stand_ins == "never":
+            return None
         for name, package in sorted(self.python_packages().items()):
             executable = package.programs.get(program)
             if executable is not None:
@@ -247,6 +260,17 @@ class PackageIndex:
         return matches
 
 
+def stand_in_policy(value: str | None = None) -> str:
+    """``value`` (by default ``$LAUNCHKIT_STANDINS``) checked: one of :data:`STANDIN_POLICIES`."""
+    if value is None:
+        value = os.environ.get(STANDINS, "") or "auto"
+    if value not in STANDIN_POLICIES:
+        raise LaunchArgumentError(
+            f"{STANDINS} is {value!r}", expected="one of " + ", ".join(STANDIN_POLICIES)
+        )
+    return value
+
+
 def _launch_candidates(share: Path, filename: str) -> list[Path]:
     return [share / folder / filename if folder else share / filename for folder in LAUNCH_FOLDERS]
 
@@ -274,8 +298,6 @@ def _changed(folder: str) -> int:
 
 
 def _read_entry_points() -> dict[str, PythonPackage]:
-    from importlib.metadata import entry_points
-
     found: dict[str, PythonPackage] = {}
     for ep in entry_points(group=ENTRY_POINT_GROUP):
         if ep.name in found:

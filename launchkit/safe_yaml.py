@@ -12,9 +12,8 @@ about; the text must be UTF-8.
 
 from __future__ import annotations
 
-import contextlib
 import stat
-from collections.abc import Iterator, Sequence
+from collections.abc import Sequence
 from pathlib import Path
 from typing import Any
 
@@ -36,30 +35,11 @@ _Loader: type[yaml.SafeLoader] = getattr(yaml, "CSafeLoader", yaml.SafeLoader)
 MERGE_TAG = "tag:yaml.org,2002:merge"
 _STR_TAG = "tag:yaml.org,2002:str"
 _DEFAULT_TAGS = {"tag:yaml.org,2002:map", "tag:yaml.org,2002:seq"}
-#: The first characters of plain scalars the resolver may read as something but text; every
-#: scalar goes to it if it has a resolver for any first character (it has none today).
-_RESOLVED_BY_FIRST = frozenset(_Loader.yaml_implicit_resolvers)
-_RESOLVES_ANY = None in _RESOLVED_BY_FIRST
 
 
 class Node:
     """A YAML node: a mapping (``pairs``), a list (``items``) or a scalar (``value``), with the
-    line and column it begins at (one is built per scalar of the file: kept small)."""
-
-    __slots__ = (
-        "closed",
-        "col",
-        "file",
-        "items",
-        "kind",
-        "line",
-        "pairs",
-        "size",
-        "style",
-        "tag",
-        "value",
-        "written",
-    )
+    line and column it begins at."""
 
     def __init__(
         self,
@@ -134,23 +114,6 @@ def compose(text: str, path: Path) -> Node | None:
     return _Composer(text, path).run()
 
 
-class NotAList(Exception):
-    """The document is not one mapping whose only key is the one asked for, holding a list."""
-
-
-def list_items(text: str, path: Path, key: str) -> Iterator[Node]:
-    """The items of the list in ``key: [...]``, the document's one mapping's only key, composed
-    one at a time (a large file's nodes are not all held at once), with :func:`compose`'s
-    bounds and errors. :class:`NotAList`, maybe after some items, for a document of any other
-    shape: :func:`compose` reads it (and reports what is wrong with it)."""
-    composer = _Composer(text, path)
-    try:
-        with composer.translated():
-            yield from composer.list_items(key)
-    finally:
-        composer.loader.dispose()
-
-
 class _Composer:
     """Events to nodes, in a loop, with the bounds the module docstring lists."""
 
@@ -166,17 +129,10 @@ class _Composer:
         return Location(str(self.path), mark.line + 1, mark.column + 1)
 
     def run(self) -> Node | None:
+        """The document's root node; PyYAML's errors as :class:`LaunchFileError`\\ s at their
+        line and column."""
         try:
-            with self.translated():
-                return self._document()
-        finally:
-            self.loader.dispose()
-
-    @contextlib.contextmanager
-    def translated(self) -> Iterator[None]:
-        """PyYAML's errors as :class:`LaunchFileError`\\ s at their line and column."""
-        try:
-            yield
+            return self._document()
         except yaml.MarkedYAMLError as error:
             mark = error.problem_mark or error.context_mark
             problem = error.problem or error.context or "malformed YAML"
@@ -191,6 +147,8 @@ class _Composer:
                 self._reader_location(error),
                 expected="printable characters only",
             ) from None
+        finally:
+            self.loader.dispose()
 
     def _reader_location(self, error: yaml.YAMLError) -> Location:
         position = getattr(error, "position", None)
@@ -217,94 +175,56 @@ class _Composer:
             )
         return root
 
-    def list_items(self, key: str) -> Iterator[Node]:
-        """See :func:`list_items`."""
-        loader = self.loader
-        loader.get_event()  # stream start
-        if not loader.check_event(yaml.DocumentStartEvent):
-            raise NotAList
-        loader.get_event()
-        if not self._plain_start(yaml.MappingStartEvent, "map"):
-            raise NotAList
-        name = self._node(1)
-        if name.kind != "scalar" or name.value != key or name.tag == MERGE_TAG:
-            raise NotAList
-        if not self._plain_start(yaml.SequenceStartEvent, "seq"):
-            raise NotAList
-        while not loader.check_event(yaml.SequenceEndEvent):
-            yield self._node(2)
-        loader.get_event()
-        if not loader.check_event(yaml.MappingEndEvent):
-            raise NotAList  # a second key
-        loader.get_event()
-        loader.get_event()  # document end
-        if not loader.check_event(yaml.StreamEndEvent):
-            raise NotAList  # a second document
-
-    def _plain_start(self, kind: type[yaml.CollectionStartEvent], name: str) -> bool:
-        """Take the next event if it opens a collection of ``kind`` with no anchor or tag."""
-        event = self.loader.peek_event()
-        if not isinstance(event, kind) or event.anchor is not None:
-            return False
-        if event.tag is not None and event.tag != "!" and event.tag not in _DEFAULT_TAGS:
-            return False
-        self.loader.get_event()
-        return True
-
-    def _node(self, depth: int = 0) -> Node:
-        """The next node, built without recursion: a stack of open collections (``depth``:
-        how many are open around it). A large file has millions of events: the loop
-        dispatches on the event's exact type and counts sizes as children are added."""
+    def _node(self) -> Node:
+        """The next node, built without recursion: a stack of open collections."""
         stack: list[tuple[Node, list[Node]]] = []
-        get_event = self.loader.get_event
         while True:
-            event = get_event()
-            kind = type(event)
-            if kind is yaml.ScalarEvent:
+            event = self.loader.get_event()
+            if isinstance(event, yaml.ScalarEvent):
                 node = self._scalar(event)
-                if event.anchor is not None:
-                    self.anchors[event.anchor] = node
-            elif kind is yaml.MappingStartEvent or kind is yaml.SequenceStartEvent:
-                name = "map" if kind is yaml.MappingStartEvent else "seq"
-                self._check_tag(event, name)
-                mark = event.start_mark
-                opened = Node(name, self.file, mark.line + 1, mark.column + 1)
-                if event.anchor is not None:
-                    self.anchors[event.anchor] = opened
+                self._anchor(event, node)
+            elif isinstance(event, yaml.AliasEvent):
+                node = self._alias(event)
+            elif isinstance(event, yaml.SequenceStartEvent | yaml.MappingStartEvent):
+                kind = "seq" if isinstance(event, yaml.SequenceStartEvent) else "map"
+                self._check_tag(event, kind)
+                mark: Any = event.start_mark  # the parser's events always have one
+                opened = Node(kind, self.file, mark.line + 1, mark.column + 1)
+                self._anchor(event, opened)
                 stack.append((opened, []))
-                if len(stack) + depth > MAX_DEPTH:
+                if len(stack) > MAX_DEPTH:
                     raise LaunchFileError(
                         f"the YAML nests more than {MAX_DEPTH} levels deep",
                         opened.location,
                         expected="a launch file of ordinary depth",
                     )
                 continue
-            elif kind is yaml.AliasEvent:
-                node = self._alias(event)
             else:  # the end of the innermost open collection
                 node, inside = stack.pop()
                 node.closed = True
+                node.size = 1 + sum(child.size for child in inside)
                 if node.kind == "map":
                     node.pairs = list(zip(inside[0::2], inside[1::2], strict=True))
                 else:
                     node.items = inside
             if not stack:
                 return node
-            parent, inside = stack[-1]
-            parent.size += node.size  # nodes in it, aliases expanded
-            inside.append(node)
+            stack[-1][1].append(node)
+
+    def _anchor(self, event: yaml.NodeEvent, node: Node) -> None:
+        if event.anchor is not None:
+            self.anchors[event.anchor] = node
 
     def _scalar(self, event: yaml.ScalarEvent) -> Node:
         tag = event.tag
         if tag is None or tag == "!":
             # only a plain scalar can be anything but text (quoted and block ones are text)
             plain = not event.style and event.tag is None
-            text = event.value
-            typed = _RESOLVES_ANY or not text or text[0] in _RESOLVED_BY_FIRST
-            if not plain or (event.implicit[0] and not typed):
-                tag = _STR_TAG  # no implicit type starts with this character: text
-            else:
-                tag = self.loader.resolve(yaml.ScalarNode, text, event.implicit)
+            tag = (
+                self.loader.resolve(yaml.ScalarNode, event.value, event.implicit)
+                if plain
+                else _STR_TAG
+            )
         if tag not in (_STR_TAG, MERGE_TAG) and len(event.value) > MAX_NUMBER_LENGTH:
             raise LaunchFileError(
                 f"an unquoted {tag.rsplit(':', 1)[-1]} of {len(event.value)} characters",

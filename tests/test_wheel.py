@@ -60,12 +60,17 @@ def test_installed_wheel_has_the_robot_share_dir(tmp_path: Path) -> None:
         cwd=elsewhere,
     )
     assert "[talker-1] Hello number 1" in ran.stdout
+    # a stock package's interface files travel in the wheel too
+    shown = run(
+        env_dir / "bin" / "launchkit", "interface", "show", "turtlesim/msg/Pose", cwd=elsewhere
+    )
+    assert "float32 linear_velocity" in shown.stdout
     printed = run(
         env_dir / "bin" / "launchkit", "run", "gazebo_and_rviz.launch.xml", "--print", cwd=elsewhere
     )
     assert "spawn_entity" in printed.stdout and "robot_state_publisher" in printed.stdout
     assert str(share / "config" / "robot.rviz") in printed.stdout
-    assert "launchkit.stock.gazebo_ros.server" in printed.stdout
+    assert "launchkit.stock.gazebo_ros.gzserver" in printed.stdout
     # xacro is a runtime dependency: tutorial launch files run $(command 'xacro ...')
     xacro = tmp_path / "xacro.launch.xml"
     xacro.write_text(

@@ -147,10 +147,12 @@ class EventHandler:
         matcher: Callable[[Event], bool],
         entities: Sequence[Visitable] = (),
         handle_once: bool = False,
+        description: str | None = None,
     ) -> None:
         self.matcher = matcher
         self.entities = list(entities)
         self.handle_once = handle_once
+        self.description = description
         self.snapshot: Snapshot | None = None
         #: Registered by launchkit itself (``--print`` does not show it).
         self.internal = False
@@ -169,7 +171,7 @@ class EventHandler:
 
     def describe(self) -> str:
         """What the handler waits for (``--print``)."""
-        return type(self).__name__
+        return self.description or type(self).__name__
 
 
 def action_matcher(event_type: type[Event], target: object | None) -> Callable[[Event], bool]:

@@ -13,13 +13,15 @@ imports it back.
 from __future__ import annotations
 
 import os
+import shutil
+import tempfile
 from collections import deque
 from collections.abc import Callable, Iterator, Sequence
 from contextlib import AbstractContextManager, contextmanager, nullcontext
+from dataclasses import dataclass, field
 from pathlib import Path
 from typing import TYPE_CHECKING, Any, Protocol
 
-from launchkit._record import Frozen, Record
 from launchkit.packages import PackageIndex
 
 if TYPE_CHECKING:
@@ -28,30 +30,16 @@ if TYPE_CHECKING:
     from launchkit.errors import LaunchkitError, Location
 
 
-class Scope(Record):
+@dataclass
+class Scope:
     """What a scoped ``<group>`` saves and restores."""
 
-    __slots__ = ("configurations", "environment", "global_params", "machine", "remaps")
-    configurations: dict[str, str]
-    environment: dict[str, str]
+    configurations: dict[str, str] = field(default_factory=dict)
+    environment: dict[str, str] = field(default_factory=dict)
     # (name, value) from <set_parameter>, a file path from <set_parameters_from_file>, in order
-    global_params: list[tuple[str, str] | str]
-    remaps: list[tuple[str, str]]
-    machine: str  # ``<group machine>``: the host its processes run on ("" for this one)
-
-    def __init__(
-        self,
-        configurations: dict[str, str] | None = None,
-        environment: dict[str, str] | None = None,
-        global_params: list[tuple[str, str] | str] | None = None,
-        remaps: list[tuple[str, str]] | None = None,
-        machine: str = "",
-    ) -> None:
-        self.configurations = {} if configurations is None else configurations
-        self.environment = {} if environment is None else environment
-        self.global_params = [] if global_params is None else global_params
-        self.remaps = [] if remaps is None else remaps
-        self.machine = machine
+    global_params: list[tuple[str, str] | str] = field(default_factory=list)
+    remaps: list[tuple[str, str]] = field(default_factory=list)
+    machine: str = ""  # ``<group machine>``: the host its processes run on ("" for this one)
 
     def copy(self) -> Scope:
         """An independent copy (what a timer captures): new containers; what they hold
@@ -156,16 +144,12 @@ class ChildGroups(Protocol):
         """``pgid`` is gone (its id may be reused)."""
 
 
-class Snapshot(Frozen):
+@dataclass(frozen=True)
+class Snapshot:
     """A scope and file captured for later (timers run their actions in it)."""
 
-    __slots__ = ("current_file", "scope")
     scope: Scope
     current_file: Path | None
-
-    def __init__(self, scope: Scope, current_file: Path | None) -> None:
-        object.__setattr__(self, "scope", scope)
-        object.__setattr__(self, "current_file", current_file)
 
 
 #: Loads the launch file at a path (the location is the ``<include>`` that asks, for errors;
@@ -213,6 +197,11 @@ class LaunchContext:
         self.saved_environments: list[dict[str, str]] = []
         #: Told of every handler registered (the ``--print`` recorder shows their actions).
         self.on_register: Callable[[Handler], None] | None = None
+        #: Set by ``--print`` and ``check`` while they show an event handler's actions, which
+        #: ROS runs only when the event comes: an action that would call the launch file's own
+        #: code (an OpaqueFunction, a handler's function) reports what it would call through
+        #: this, with where, instead of calling it. None: call it.
+        self.instead_of_calling: Callable[[str, Location | None], None] | None = None
         #: Work posted from other threads (the ROS link's replies), run on the launch's loop;
         #: ``waker`` makes the loop look (set by the runner).
         self.posted: deque[Callable[[], None]] = deque()
@@ -247,8 +236,6 @@ class LaunchContext:
 
     def write_scratch_file(self, prefix: str, suffix: str, text: str) -> Path:
         """Write a generated file (a node's parameters) that lives as long as the run."""
-        import tempfile  # with random and hashlib: only for a file that writes one
-
         if self._scratch is None:
             root = self.scratch_root() if self.scratch_root is not None else None
             self._scratch = Path(tempfile.mkdtemp(prefix="launchkit-", dir=root))
@@ -263,8 +250,6 @@ class LaunchContext:
             self._ros.close()
             self._ros = None
         if self._scratch is not None:
-            import shutil
-
             shutil.rmtree(self._scratch, ignore_errors=True)
             self._scratch = None
 

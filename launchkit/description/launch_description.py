@@ -3,28 +3,21 @@
 from __future__ import annotations
 
 from collections.abc import Iterator
+from dataclasses import dataclass, field
 from pathlib import Path
 
-from launchkit._record import Record
 from launchkit.description.actions.arg import DeclareArgument
 from launchkit.description.actions.base import Action
 from launchkit.description.actions.group import Group
 
 
-class LaunchDescription(Record):
+@dataclass
+class LaunchDescription:
     """The actions of one launch file, in document order."""
 
-    __slots__ = ("actions", "deprecated", "path")
     path: Path
-    actions: list[Action]
-    deprecated: str | None
-
-    def __init__(
-        self, path: Path, actions: list[Action] | None = None, deprecated: str | None = None
-    ) -> None:
-        self.path = path
-        self.actions = [] if actions is None else actions
-        self.deprecated = deprecated
+    actions: list[Action] = field(default_factory=list)
+    deprecated: str | None = None
 
     def declared_arguments(self) -> list[DeclareArgument]:
         """Every ``<arg>`` of this file (inside groups too), in document order."""

@@ -10,54 +10,27 @@ Without a link (``--print``) the actions say what they would do instead.
 from __future__ import annotations
 
 from collections.abc import Callable
+from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any, Protocol
-
-from launchkit._record import Record
 
 #: ``report(level, logger, message)``: a launch line, printed on the launch's loop.
 Report = Callable[[str, str, str], None]
 
 
-class LoadRequest(Record):
+@dataclass
+class LoadRequest:
     """One ``composition_interfaces/srv/LoadNode`` request, evaluated."""
 
-    __slots__ = (
-        "extra_arguments",
-        "namespace",
-        "node_name",
-        "package",
-        "parameters",
-        "plugin",
-        "remaps",
-    )
     package: str
     plugin: str
-    node_name: str
-    namespace: str
-    remaps: list[str]
+    node_name: str = ""
+    namespace: str = ""
+    remaps: list[str] = field(default_factory=list)
     #: (name, typed value) pairs and parameter files (whose section for the node the link
     #: reads), in order, global parameters first; later ones win
-    parameters: list[tuple[str, Any] | Path]
-    extra_arguments: list[tuple[str, Any]]
-
-    def __init__(
-        self,
-        package: str,
-        plugin: str,
-        node_name: str = "",
-        namespace: str = "",
-        remaps: list[str] | None = None,
-        parameters: list[tuple[str, Any] | Path] | None = None,
-        extra_arguments: list[tuple[str, Any]] | None = None,
-    ) -> None:
-        self.package = package
-        self.plugin = plugin
-        self.node_name = node_name
-        self.namespace = namespace
-        self.remaps = [] if remaps is None else remaps
-        self.parameters = [] if parameters is None else parameters
-        self.extra_arguments = [] if extra_arguments is None else extra_arguments
+    parameters: list[tuple[str, Any] | Path] = field(default_factory=list)
+    extra_arguments: list[tuple[str, Any]] = field(default_factory=list)
 
 
 class RosLink(Protocol):

@@ -1,23 +1,18 @@
 """Entities to actions, the same for every syntax: which parser reads which tag.
 
 An :class:`ActionParser` holds a table of tag parsers that the tag modules fill explicitly
-(``frontend/tags``: each has a ``register``), or that it fills itself from a tag module named
-for the tag the first time a file uses that tag (:meth:`ActionParser.register_module`: an
-empty launch file imports no action classes), and does what every tag shares: ``if``/``unless``,
+(``frontend/tags``: each has a ``register``), and does what every tag shares: ``if``/``unless``,
 the action's location, and the check that no attribute was left unread (an unknown attribute
 is an error, as in ROS).
 """
 
 from __future__ import annotations
 
-import importlib
-from collections.abc import Callable, Iterable
+from collections.abc import Callable
 
 from launchkit.description.actions.base import Action
 from launchkit.description.conditions import Condition
-from launchkit.description.substitutions.base import Text, Value
-from launchkit.description.truth import condition_value
-from launchkit.errors import Location, did_you_mean
+from launchkit.errors import did_you_mean
 from launchkit.frontend.base_entity import Entity
 
 #: How deep actions may nest (a group in a group ...; real files nest a few levels): parsing
@@ -41,37 +36,16 @@ class ActionParser:
     def __init__(self) -> None:
         self._parsers: dict[str, TagParser] = {}
         self._depth = 0  # actions open around the one being parsed
-        self._modules: dict[str, str] = {}
-
-    def register_module(self, module: str, names: Iterable[str]) -> None:
-        """Read tags ``names`` with the parsers module ``module`` registers, importing it when
-        a file first uses one of them (its ``register`` must add exactly ``names``)."""
-        for name in names:
-            if name in self._parsers or name in self._modules:
-                raise ValueError(f"tag <{name}> registered twice")
-            self._modules[name] = module
-
-    def _load(self, tag: str) -> TagParser | None:
-        """The parser for ``tag``, importing the tag module that reads it on first use."""
-        parse = self._parsers.get(tag)
-        module = self._modules.get(tag) if parse is None else None
-        if module is None:
-            return parse
-        names = [name for name, where in self._modules.items() if where == module]
-        for name in names:
-            del self._modules[name]
-        importlib.import_module(module).register(self)
-        return self._parsers.get(tag)
 
     def register(self, name: str, parser: TagParser) -> None:
         """Have ``parser`` read tag ``name``; a tag registered twice is a programming error."""
-        if name in self._parsers or name in self._modules:
+        if name in self._parsers:
             raise ValueError(f"tag <{name}> registered twice")
         self._parsers[name] = parser
 
     def tags(self) -> list[str]:
         """Every tag name this parser reads, sorted."""
-        return sorted({*self._parsers, *self._modules})
+        return sorted(self._parsers)
 
     def parse_actions(self, parent: Entity, skip: tuple[str, ...] = ()) -> list[Action]:
         """The actions among ``parent``'s children (tags in ``skip`` are left to the parent)."""
@@ -79,7 +53,7 @@ class ActionParser:
 
     def parse_action(self, entity: Entity) -> Action:
         """One action tag, with its condition, fully checked."""
-        parse = self._parsers.get(entity.tag) or self._load(entity.tag)
+        parse = self._parsers.get(entity.tag)
         if parse is None:
             raise entity.error(
                 f"unknown tag {entity.label()}",
@@ -113,16 +87,7 @@ def parse_condition(entity: Entity) -> Condition | None:
             attr="unless",
         )
     if when is not None:
-        return Condition(when, False, _error_location(entity, "if", when))
+        return Condition(when, False, entity.attribute_location("if"))
     if unless is not None:
-        return Condition(unless, True, _error_location(entity, "unless", unless))
+        return Condition(unless, True, entity.attribute_location("unless"))
     return None
-
-
-def _error_location(entity: Entity, name: str, value: Value) -> Location | None:
-    """Where an error of the condition in attribute ``name`` would point: None for a literal
-    true, 1, false or 0, which evaluates without one (most conditions of a large file are
-    such, and finding an attribute's place is a fifth of reading an XML element)."""
-    if len(value) == 1 and type(value[0]) is Text and condition_value(value[0].text) is not None:
-        return None
-    return entity.attribute_location(name)

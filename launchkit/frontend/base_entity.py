@@ -126,7 +126,7 @@ class Entity(ABC):
         text = self.raw(name, native)
         if text is None:
             return None
-        if "$" not in text and "\\" not in text:  # plain text: no location to find (large files)
+        if "$" not in text and "\\" not in text:  # plain text: no location needed for errors
             return (Text(text),) if text else ()
         return parse_value(text, self.attribute_location(name))
 

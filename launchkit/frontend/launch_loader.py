@@ -10,25 +10,17 @@ only XML or YAML). Each file is read once per loader and syntax.
 
 from __future__ import annotations
 
-import contextlib
-import gc
-from collections.abc import Iterator
-from functools import cached_property
 from pathlib import Path
-from typing import TYPE_CHECKING
 
 from launchkit.description.launch_description import LaunchDescription
 from launchkit.errors import LaunchFileError, Location
 from launchkit.frontend.action_parser import ActionParser
+from launchkit.frontend.python import load_python_launch
 from launchkit.frontend.tags import standard_parser
+from launchkit.frontend.xml.parser import XmlParser
+from launchkit.frontend.yaml.parser import YamlParser
 from launchkit.packages import is_file
 
-if TYPE_CHECKING:
-    from launchkit.frontend.xml.parser import XmlParser
-    from launchkit.frontend.yaml.parser import YamlParser
-
-# the suffixes live here, not in the parsers' modules, so that choosing a
-# frontend imports neither lxml nor PyYAML: a launch imports only the one its files need
 XML_SUFFIXES = (".xml", ".launch")
 YAML_SUFFIXES = (".yaml", ".yml")
 
@@ -41,21 +33,9 @@ class LaunchLoader:
 
     def __init__(self, actions: ActionParser | None = None) -> None:
         self.actions = actions or standard_parser()
+        self.xml = XmlParser(self.actions)
+        self.yaml = YamlParser(self.actions)
         self._cache: dict[tuple[Path, str | None], LaunchDescription] = {}
-
-    @cached_property
-    def xml(self) -> XmlParser:
-        """The XML frontend (imported on first use; lxml only for a file expat does not read)."""
-        from launchkit.frontend.xml.parser import XmlParser
-
-        return XmlParser(self.actions)
-
-    @cached_property
-    def yaml(self) -> YamlParser:
-        """The YAML frontend (PyYAML is imported on first use)."""
-        from launchkit.frontend.yaml.parser import YamlParser
-
-        return YamlParser(self.actions)
 
     def load(
         self, path: Path, included_from: Location | None = None, syntax: str | None = None
@@ -65,12 +45,7 @@ class LaunchLoader:
         cached = self._cache.get((path, syntax))
         if cached is not None:
             return cached
-        frontend = self._frontend(path, syntax)
-        # not around a Python file's own code, which may well make garbage (the collector runs
-        # for it even inside a longer pause, a check's)
-        pause = collector_paused() if frontend in ("xml", "yaml") else collector_running()
-        with pause:
-            description = self._read(path, frontend, syntax, included_from)
+        description = self._read(path, self._frontend(path, syntax), syntax, included_from)
         self._cache[(path, syntax)] = description
         return description
 
@@ -78,8 +53,6 @@ class LaunchLoader:
         self, path: Path, frontend: str | None, syntax: str | None, included_from: Location | None
     ) -> LaunchDescription:
         if frontend == "python":
-            from launchkit.frontend.python import load_python_launch
-
             description = load_python_launch(path, included_from)
         elif frontend == "yaml":
             description = self.yaml.parse_file(path, included_from)
@@ -104,32 +77,6 @@ class LaunchLoader:
         if suffix in XML_SUFFIXES:
             return "yaml" if suffix == ".launch" and not _looks_like_xml(path) else "xml"
         return None
-
-
-@contextlib.contextmanager
-def collector_paused() -> Iterator[None]:
-    """Python's cycle collector paused while a file is read (or evaluated for ``check``):
-    building many objects that make no garbage otherwise runs it again and again over every
-    object built so far, a third of a large file's time."""
-    enabled = gc.isenabled()
-    gc.disable()
-    try:
-        yield
-    finally:
-        if enabled:
-            gc.enable()
-
-
-@contextlib.contextmanager
-def collector_running() -> Iterator[None]:
-    """Python's cycle collector on (for a Python launch file's own code), then as it was."""
-    paused = not gc.isenabled()
-    gc.enable()
-    try:
-        yield
-    finally:
-        if paused:
-            gc.disable()
 
 
 def _looks_like_xml(path: Path) -> bool:

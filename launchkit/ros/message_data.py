@@ -1,20 +1,20 @@
-"""Messages to and from plain data and YAML, as ``ros2 topic echo`` / ``topic pub`` do (and as
-the viewer sends them to its page): rosidl_runtime_py's ``convert`` and ``set_message``."""
+"""Messages built from plain data and YAML, as ``ros2 topic pub`` and ``ros2 service call`` build
+them (rosidl_runtime_py's ``set_message_fields``, with a located error for each mistake), and the
+field descriptions of a type. The other direction, messages as text, is
+:mod:`launchkit.ros.message_text`."""
 
 from __future__ import annotations
 
-import array
+from collections.abc import Callable
 from typing import Any
 
-import numpy as np
 import yaml
 
 from launchkit.errors import UserError
-from launchkit.ros.msgs import get_message, is_message, message_spec, message_type_name
+from launchkit.ros.msgs import get_message, message_spec
 
 _BASE, _NAME, _ARRAY, _SEQUENCE = 1, 2, 3, 4
 _INTS = {"byte", "char", "int8", "uint8", "int16", "uint16", "int32", "uint32", "int64", "uint64"}
-TRUNCATE_LENGTH = 128
 
 
 class MessageValueError(UserError):
@@ -35,38 +35,20 @@ def constants_of(type_name: str) -> list[tuple[str, str, Any]]:
     return [(c.name, c.base, c.value) for c in message_spec(type_name).constants]
 
 
-def to_data(msg: Any, truncate: int | None = TRUNCATE_LENGTH) -> dict[str, Any]:
-    """A message as nested dicts/lists (long strings and arrays cut like ``ros2 topic echo``)."""
-    out: dict[str, Any] = {}
-    for name, _ in fields_of(message_type_name(msg)):
-        out[name] = _value(getattr(msg, name), truncate)
-    return out
+#: what builds a ``builtin_interfaces/msg/Time`` of the current time (``'now'`` and a header's
+#: ``'auto'``, as ``ros2 topic pub`` expands them)
+Now = Callable[[], Any]
+_HEADER, _TIME = "std_msgs/msg/Header", "builtin_interfaces/msg/Time"
 
 
-def _value(value: Any, truncate: int | None) -> Any:
-    if is_message(value):
-        return to_data(value, truncate)
-    if isinstance(value, (np.ndarray, array.array)):
-        value = value.tolist()
-    if isinstance(value, list):
-        items = [_value(v, truncate) for v in value]
-        if truncate is not None and len(items) > truncate:
-            return [*items[:truncate], "..."]
-        return items
-    if isinstance(value, str) and truncate is not None and len(value) > truncate:
-        return value[:truncate] + "..."
-    return value
+def from_yaml(type_name: str, text: str, now: Now | None = None) -> Any:
+    """Build a message of ``type_name`` from YAML text (``'{linear: {x: 1.0}}'``); with ``now``,
+    a ``Time`` field given as ``now`` and a ``Header`` given as ``auto`` get the current time."""
+    return build(type_name, parse_values(type_name, text), type_name, now)
 
 
-def to_yaml(msg: Any, truncate: int | None = TRUNCATE_LENGTH) -> str:
-    """A message as block YAML, like ``ros2 topic echo``."""
-    return yaml.safe_dump(
-        to_data(msg, truncate), default_flow_style=False, sort_keys=False, width=1 << 30
-    )
-
-
-def from_yaml(type_name: str, text: str) -> Any:
-    """Build a message of ``type_name`` from YAML text (``'{linear: {x: 1.0}}'``)."""
+def parse_values(type_name: str, text: str) -> Any:
+    """The YAML text of a message's values, read (not yet checked against ``type_name``)."""
     try:
         data = yaml.safe_load(text) if text.strip() else {}
     except yaml.YAMLError as exc:
@@ -75,12 +57,20 @@ def from_yaml(type_name: str, text: str) -> Any:
             f"the values {text!r} are not valid YAML ({mark})",
             expected=f"a YAML mapping of {type_name} fields, e.g. '{{{_example(type_name)}}}'",
         ) from None
-    if data is None:
-        data = {}
-    return build(type_name, data, type_name)
+    return {} if data is None else data
 
 
-def build(type_name: str, data: Any, path: str) -> Any:
+def mentions_now(data: Any) -> bool:
+    """Whether parsed values ask for the current time somewhere (``now`` or ``auto``), so a
+    message built from them differs each time it is built."""
+    if isinstance(data, dict):
+        return any(mentions_now(v) for v in data.values())
+    if isinstance(data, list):
+        return any(mentions_now(v) for v in data)
+    return data in ("now", "auto")
+
+
+def build(type_name: str, data: Any, path: str, now: Now | None = None) -> Any:
     """A message of ``type_name`` with the fields in the mapping ``data`` set (checked)."""
     cls = get_message(type_name)
     if not isinstance(data, dict):
@@ -96,16 +86,20 @@ def build(type_name: str, data: Any, path: str) -> Any:
                 f"{path}: {type_name} has no field {key!r}",
                 expected="one of: " + ", ".join(fields) if fields else "no fields",
             )
-        kwargs[key] = _convert(fields[key], value, f"{path}.{key}")
+        kwargs[key] = _convert(fields[key], value, f"{path}.{key}", now)
     return cls(**kwargs)
 
 
-def _convert(desc: Any, value: Any, path: str) -> Any:
+def _convert(desc: Any, value: Any, path: str, now: Now | None) -> Any:
     kind, detail = desc
     if kind == _BASE:
         return _base(detail[0], value, path)
     if kind == _NAME:
-        return build(detail, value, path)
+        if now is not None and detail == _TIME and value == "now":
+            return now()
+        if now is not None and detail == _HEADER and value == "auto":
+            return get_message(_HEADER)(stamp=now())
+        return build(detail, value, path, now)
     sub, length = detail
     if not isinstance(value, list):
         raise MessageValueError(f"{path}: got {value!r}, expected a list")
@@ -113,7 +107,7 @@ def _convert(desc: Any, value: Any, path: str) -> Any:
         raise MessageValueError(f"{path}: got {len(value)} items, expected exactly {length}")
     if kind == _SEQUENCE and length and len(value) > length:
         raise MessageValueError(f"{path}: got {len(value)} items, expected at most {length}")
-    return [_convert(sub, v, f"{path}[{i}]") for i, v in enumerate(value)]
+    return [_convert(sub, v, f"{path}[{i}]", now) for i, v in enumerate(value)]
 
 
 def _base(base: str, value: Any, path: str) -> Any:
@@ -156,19 +150,3 @@ def _example(type_name: str) -> str:
         )
         return f"{name}: {sample}"
     return f"{name}: []"
-
-
-def short_repr(msg: Any) -> str:
-    """``pkg.msg.Name(field=value, ...)``, the form ``ros2 service call`` prints."""
-    type_name = message_type_name(msg)
-    parts = []
-    for name, _ in fields_of(type_name):
-        value = getattr(msg, name)
-        if is_message(value):
-            text = short_repr(value)
-        elif isinstance(value, list) and value and is_message(value[0]):
-            text = "[" + ", ".join(short_repr(v) for v in value) + "]"
-        else:
-            text = repr(_value(value, None))
-        parts.append(f"{name}={text}")
-    return f"{type_name.replace('/', '.')}({', '.join(parts)})"

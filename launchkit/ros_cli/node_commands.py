@@ -6,11 +6,16 @@ import argparse
 import sys
 from typing import Any
 
+from launchkit.ros.keyexpr import Token
 from launchkit.ros_cli.common import (
     CliUsageError,
+    absolute_node_name,
+    action_names_and_types,
     add_router_option,
     graph_once,
-    visible,
+    hidden_name,
+    names_and_types,
+    node_names,
 )
 
 
@@ -18,19 +23,26 @@ def add_parser(commands: Any) -> None:
     """Register the ``node`` subcommands."""
     node = commands.add_parser("node", help="nodes: list, info")
     sub = node.add_subparsers(dest="verb", metavar="VERB", required=True)
-    p = sub.add_parser("list", help="list running nodes")
+    p = sub.add_parser("list", help="Output a list of available nodes")
     p.add_argument("-a", "--all", action="store_true", help="include hidden nodes")
+    p.add_argument("-c", "--count-nodes", action="store_true", help="only count them")
     add_router_option(p)
     p.set_defaults(run=_list)
-    p = sub.add_parser("info", help="a node's publishers, subscriptions and services")
+    p = sub.add_parser("info", help="Output information about a node")
     p.add_argument("node_name")
+    p.add_argument(
+        "--include-hidden", action="store_true", help="show hidden topics, services and actions"
+    )
     add_router_option(p)
     p.set_defaults(run=_info)
 
 
 def _list(args: argparse.Namespace) -> int:
     # one line per node, as ros2 node list: two nodes of one name are two lines and a warning
-    names = sorted(t.node_fqn for t in graph_once(args) if t.kind == "NN" and visible(t, args.all))
+    names = node_names(graph_once(args), args.all)
+    if args.count_nodes:
+        print(len(names))
+        return 0
     if len(set(names)) < len(names):
         twice = sorted({name for name in names if names.count(name) > 1})
         print(
@@ -48,11 +60,13 @@ _SECTIONS = (
     ("Publishers", "MP"),
     ("Service Servers", "SS"),
     ("Service Clients", "SC"),
+    ("Action Servers", "server"),
+    ("Action Clients", "client"),
 )
 
 
 def _info(args: argparse.Namespace) -> int:
-    wanted = args.node_name if args.node_name.startswith("/") else "/" + args.node_name
+    wanted = absolute_node_name(args.node_name)
     tokens = [t for t in graph_once(args) if t.node_fqn == wanted]
     count = sum(t.kind == "NN" for t in tokens)
     if not count:
@@ -68,10 +82,20 @@ def _info(args: argparse.Namespace) -> int:
     print(wanted)
     for title, kind in _SECTIONS:
         print(f"  {title}:")
-        entries = sorted({(t.topic, t.type_name) for t in tokens if t.kind == kind})
-        for name, type_name in entries:
-            print(f"    {name}: {type_name}")
-        if not entries:
-            print()
-    print("  Action Servers:\n\n  Action Clients:\n")
+        # ros2 prints the entries one per line, or one empty line when there are none
+        print("\n".join(info_lines(tokens, kind, args.include_hidden)))
     return 0
+
+
+def info_lines(tokens: list[Token], kind: str, include_hidden: bool) -> list[str]:
+    """The lines of one ``node info`` section: ``    NAME: TYPE[, TYPE]`` for the entities of
+    ``kind`` (``MS``, ``MP``, ``SS``, ``SC``, or the actions a ``server`` or ``client`` has)."""
+    if kind in ("server", "client"):
+        entries = action_names_and_types(tokens, kind)
+    else:
+        entries = names_and_types(tokens, (kind,), True)
+    return [
+        f"    {name}: {', '.join(types)}"
+        for name, types in entries.items()
+        if include_hidden or not hidden_name(name)
+    ]

@@ -1,153 +1,216 @@
-"""``launchkit param list|get|set``: a node's parameters through its parameter services."""
+"""``launchkit param list|get|set|describe|dump|load|delete``: a node's parameters through its
+parameter services, printed as ``ros2 param`` prints them."""
 
 from __future__ import annotations
 
 import argparse
-import time
+import re
+import sys
 from typing import Any
 
-from launchkit.errors import RuntimeLaunchError
-from launchkit.ros.msgs import get_message, get_service
-from launchkit.ros.node import Node
-from launchkit.ros.params import Parameter, ParameterType, parameter_from_value, parse_value_text
-from launchkit.ros_cli.common import CliUsageError, add_router_option, cli_node, graph_tokens
+from launchkit.ros_cli.common import (
+    CliUsageError,
+    absolute_node_name,
+    add_router_option,
+    cli_node,
+    graph_tokens,
+    node_names,
+    wait_for_node,
+)
+from launchkit.ros_cli.parameter_values import (
+    TYPE_NAMES,
+    NoParameterServices,
+    ParameterClient,
+    python_value,
+    value_from_text,
+)
 
 _LABELS = {
-    ParameterType.BOOL: "Boolean value is",
-    ParameterType.INTEGER: "Integer value is",
-    ParameterType.DOUBLE: "Double value is",
-    ParameterType.STRING: "String value is",
-    ParameterType.BYTE_ARRAY: "Byte values are",
-    ParameterType.BOOL_ARRAY: "Boolean values are",
-    ParameterType.INTEGER_ARRAY: "Integer values are",
-    ParameterType.DOUBLE_ARRAY: "Double values are",
-    ParameterType.STRING_ARRAY: "String values are",
+    1: "Boolean value is:",
+    2: "Integer value is:",
+    3: "Double value is:",
+    4: "String value is:",
+    5: "Byte values are:",
+    6: "Boolean values are:",
+    7: "Integer values are:",
+    8: "Double values are:",
+    9: "String values are:",
 }
 
 
 def add_parser(commands: Any) -> None:
-    """Register the ``param`` subcommands."""
-    param = commands.add_parser("param", help="parameters: list, get, set")
-    sub = param.add_subparsers(dest="verb", metavar="VERB", required=True)
-    p = sub.add_parser("list", help="list the parameters of one node or of every node")
-    p.add_argument("node_name", nargs="?")
-    add_router_option(p)
-    p.set_defaults(run=_list)
-    p = sub.add_parser("get", help="print a parameter's value")
-    p.add_argument("node_name")
-    p.add_argument("parameter_name")
-    add_router_option(p)
-    p.set_defaults(run=_get)
-    p = sub.add_parser("set", help="set a parameter (the value is read as YAML)")
-    p.add_argument("node_name")
-    p.add_argument("parameter_name")
-    p.add_argument("value")
-    add_router_option(p)
-    p.set_defaults(run=_set)
-
-
-def _fqn(name: str) -> str:
-    return name if name.startswith("/") else "/" + name
-
-
-def _call(node: Node, target: str, srv_name: str, request: Any) -> Any:
-    srv = get_service(f"rcl_interfaces/srv/{srv_name}")
-    service = f"{target}/{_snake(srv_name)}"
-    client = node.create_client(srv, service)
-    if not client.wait_for_service(timeout_sec=5.0):
-        raise CliUsageError(
-            f"node {target} has no parameter services",
-            expected="a running node (see `launchkit node list`)",
-        )
-    try:
-        response = client.call(request, timeout_sec=10.0)
-    except Exception as exc:
-        raise RuntimeLaunchError(f"{service}: {exc}") from None
-    if response is None:
-        raise RuntimeLaunchError(f"{service}: no answer within 10 s")
-    return response
-
-
-def _snake(name: str) -> str:
-    return "".join("_" + c.lower() if c.isupper() else c for c in name).lstrip("_")
-
-
-def _known_nodes(node: Node) -> list[str]:
-    return sorted(
-        {
-            t.node_fqn
-            for t in graph_tokens(node)
-            if t.kind == "NN" and not t.node_name.startswith("_")
-        }
+    """Register the ``param`` verbs."""
+    param = commands.add_parser(
+        "param", help="parameters: list, get, set, describe, dump, load, delete"
     )
+    sub = param.add_subparsers(dest="verb", metavar="VERB", required=True)
+    p = sub.add_parser("list", help="Output a list of available parameters")
+    p.add_argument("node_name", nargs="?")
+    p.add_argument("--filter", help="only the names this regular expression matches")
+    p.add_argument("--param-prefixes", nargs="+", default=[])
+    p.add_argument("--param-type", action="store_true", help="print each parameter's type")
+    _common(p, _list)
+    p = _node_verb(sub, "get", "Get parameter", _get)
+    p.add_argument("parameter_name")
+    p.add_argument("--hide-type", action="store_true", help="print the value alone")
+    p = _node_verb(sub, "set", "Set parameter", _set)
+    p.add_argument("parameter_name")
+    p.add_argument("value", help="read as YAML, as ros2 param set reads it")
+    p = _node_verb(sub, "describe", "Show descriptive information about parameters", _describe)
+    p.add_argument("parameter_names", nargs="+")
+    p = _node_verb(sub, "dump", "Show all of the parameters of a node as YAML", _dump)
+    p.add_argument(
+        "--output-dir", help="write NODE.yaml there instead (deprecated in ros2: use > FILE)"
+    )
+    p = _node_verb(sub, "load", "Load parameter file for a node", _load)
+    p.add_argument("parameter_file")
+    p.add_argument("--no-use-wildcard", action="store_true", help="leave out the '/**' entries")
+    p = _node_verb(sub, "delete", "Delete parameter", _delete)
+    p.add_argument("parameter_name")
 
 
-_NODE_WAIT = 3.0  # seconds a named node may take to show up in a fresh session's graph
+def _node_verb(sub: Any, name: str, help_text: str, run: Any) -> argparse.ArgumentParser:
+    parser: argparse.ArgumentParser = sub.add_parser(name, help=help_text)
+    parser.add_argument("node_name")
+    _common(parser, run)
+    return parser
 
 
-def _require_node(node: Node, target: str) -> None:
-    # A busy machine can answer the first graph queries with part of the graph: a node the user
-    # names is looked for again until it shows up or _NODE_WAIT has passed.
-    deadline = time.monotonic() + _NODE_WAIT
-    while target not in _known_nodes(node):
-        if time.monotonic() < deadline:
-            time.sleep(0.1)
-            continue
-        raise CliUsageError(
-            f"unknown node {target}", expected="a node listed by `launchkit node list`"
-        )
+def _common(parser: argparse.ArgumentParser, run: Any) -> None:
+    parser.add_argument("--include-hidden-nodes", action="store_true")
+    parser.add_argument(
+        "--timeout",
+        metavar="N",
+        type=int,
+        default=1,
+        help="wait up to N seconds for the node to appear (at least 3)",
+    )
+    add_router_option(parser)
+    parser.set_defaults(run=run)
 
 
 def _list(args: argparse.Namespace) -> int:
-    srv = get_service("rcl_interfaces/srv/ListParameters")
+    pattern = re.compile(args.filter) if args.filter else None
     with cli_node(args) as node:
         if args.node_name:
-            targets = [_fqn(args.node_name)]
-            _require_node(node, targets[0])
+            targets = [absolute_node_name(args.node_name)]
+            wait_for_node(node, targets[0], args.include_hidden_nodes, args.timeout)
         else:
-            targets = _known_nodes(node)
+            targets = sorted(set(node_names(graph_tokens(node), args.include_hidden_nodes)))
         for target in targets:
-            response = _call(node, target, "ListParameters", srv.Request())
-            print(f"{target}:")
-            for name in sorted(response.result.names):
-                print(f"  {name}")
+            client = ParameterClient(node, target)
+            try:
+                names = sorted(client.names(args.param_prefixes))
+            except NoParameterServices as missing:  # said, and the next node listed
+                print(missing.format().removeprefix("error: "))
+                continue
+            if pattern is not None:
+                names = [name for name in names if pattern.match(name)]
+            if not args.node_name and names:
+                print(f"{target}:")
+            types = client.types(names) if args.param_type else {}
+            for name in names:
+                print(f"  {name} (type: {types[name]})" if args.param_type else f"  {name}")
     return 0
 
 
+def _target(args: argparse.Namespace, node: Any) -> ParameterClient:
+    target = absolute_node_name(args.node_name)
+    wait_for_node(node, target, args.include_hidden_nodes, args.timeout)
+    return ParameterClient(node, target)
+
+
 def _get(args: argparse.Namespace) -> int:
-    srv = get_service("rcl_interfaces/srv/GetParameters")
-    target = _fqn(args.node_name)
     with cli_node(args) as node:
-        _require_node(node, target)
-        response = _call(node, target, "GetParameters", srv.Request(names=[args.parameter_name]))
-    value = Parameter(args.parameter_name, ParameterType.NOT_SET)
-    if response.values:  # none at all for an undeclared name, as rclpy answers
-        value = Parameter.from_msg_value(args.parameter_name, response.values[0])
-    if value.type_ == ParameterType.NOT_SET:
+        values = _target(args, node).get([args.parameter_name])
+    if not values:
         raise CliUsageError(
-            f"parameter {args.parameter_name!r} is not set on {target}",
-            expected=f"one of the names `launchkit param list {target}` shows",
+            f"Parameter not set: {args.parameter_name!r} on {absolute_node_name(args.node_name)}",
+            expected=f"one of the names `launchkit param list {args.node_name}` shows",
         )
-    shown = value.value
-    if value.type_ == ParameterType.BOOL:
-        shown = "True" if shown else "False"
-    print(f"{_LABELS[value.type_]}: {shown}")
+    value = values[0]
+    label = _LABELS.get(value.type, "Parameter not set.")
+    shown = python_value(value)
+    if args.hide_type:
+        print(shown)
+    elif shown is None:
+        print(label)
+    else:
+        print(label, shown)
     return 0
 
 
 def _set(args: argparse.Namespace) -> int:
-    srv = get_service("rcl_interfaces/srv/SetParameters")
-    target = _fqn(args.node_name)
-    param = parameter_from_value(args.parameter_name, parse_value_text(args.value))
-    msg = get_message("rcl_interfaces/msg/Parameter")(
-        name=args.parameter_name, value=param.to_msg_value()
-    )
     with cli_node(args) as node:
-        _require_node(node, target)
-        response = _call(node, target, "SetParameters", srv.Request(parameters=[msg]))
-    result = response.results[0]
+        result = _target(args, node).set({args.parameter_name: value_from_text(args.value)})[0]
+    return _say(result, "Set parameter successful", "Setting parameter failed")
+
+
+def _delete(args: argparse.Namespace) -> int:
+    with cli_node(args) as node:
+        result = _target(args, node).set({args.parameter_name: value_from_text(None)})[0]
+    return _say(result, "Deleted parameter successfully", "Deleting parameter failed")
+
+
+def _say(result: Any, success: str, failure: str) -> int:
+    """ros2 param's line for one SetParametersResult (a failure on stderr, exit status 1)."""
+    reason = f": {result.reason}" if result.reason else ""
     if result.successful:
-        print("Set parameter successful")
+        print(success + reason)
         return 0
-    print(f"Setting parameter failed: {result.reason}")
+    print(failure + reason, file=sys.stderr)
     return 1
+
+
+def _describe(args: argparse.Namespace) -> int:
+    with cli_node(args) as node:
+        descriptors = _target(args, node).describe(args.parameter_names)
+    for descriptor in descriptors:
+        print("Parameter name:", descriptor.name)
+        print("  Type:", TYPE_NAMES.get(descriptor.type, "not set"))
+        if descriptor.description:
+            print("  Description:", descriptor.description)
+        print("  Constraints:")
+        if descriptor.read_only:
+            print("    Read only: true")
+        ranges = [*descriptor.floating_point_range, *descriptor.integer_range]
+        if ranges:
+            print("    Min value:", ranges[0].from_value)
+            print("    Max value:", ranges[0].to_value)
+            if ranges[0].step:
+                print("    Step:", ranges[0].step)
+        if descriptor.additional_constraints:
+            print("    Additional constraints:", descriptor.additional_constraints)
+    return 0
+
+
+def _dump(args: argparse.Namespace) -> int:
+    from launchkit.ros_cli.parameter_files import dump_text, write_dump
+
+    target = absolute_node_name(args.node_name)
+    with cli_node(args) as node:
+        client = _target(args, node)
+        names = sorted(client.names([]))
+        values = client.get(names) if names else []
+    text = dump_text(target, {n: python_value(v) for n, v in zip(names, values, strict=False)})
+    if args.output_dir is None:
+        print(text)
+        return 0
+    print(
+        "WARNING: '--output-dir' is deprecated; use redirection to save to a file", file=sys.stderr
+    )
+    print("Saving to: ", write_dump(args.output_dir, target, text))
+    return 0
+
+
+def _load(args: argparse.Namespace) -> int:
+    from launchkit.ros_cli.parameter_files import parameters_in_file
+
+    target = absolute_node_name(args.node_name)
+    parameters = parameters_in_file(args.parameter_file, target, not args.no_use_wildcard)
+    with cli_node(args) as node:
+        results = _target(args, node).set(parameters)
+    status = 0
+    for name, result in zip(parameters, results, strict=True):
+        status |= _say(result, f"Set parameter {name} successful", f"Set parameter {name} failed")
+    return status

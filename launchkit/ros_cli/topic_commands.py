@@ -1,314 +1,256 @@
-"""``launchkit topic list|echo|pub|hz|info|type``: ros2 topic's commands and output."""
+"""``launchkit topic list|echo|pub|hz|bw|info|type|find``: ros2 topic's verbs and output.
+
+``list``, ``info``, ``type`` and ``find`` ask the router once and need no node (this module);
+``echo``, ``pub``, ``hz`` and ``bw`` make a node and import the message types when they run
+(``topic_echo``, ``topic_pub``, ``topic_rates``).
+"""
 
 from __future__ import annotations
 
 import argparse
-import itertools
-import math
-import sys
-import threading
-import time
 from typing import Any
 
 from launchkit.ros.keyexpr import Token
-from launchkit.ros.qos import DurabilityPolicy, QoSProfile, ReliabilityPolicy
 from launchkit.ros_cli.common import (
     CliUsageError,
     add_router_option,
-    cli_node,
     graph_once,
-    graph_tokens,
-    hidden_name,
+    names_and_types,
     normalize_topic,
+    print_names,
 )
+from launchkit.ros_cli.qos_options import add_qos_arguments
 
-# list, info and type ask the router once and need no node; echo, pub and hz import the message
-# types (and numpy) when they run
+
+def _positive_float(text: str) -> float:
+    try:
+        value = float(text)
+    except ValueError:
+        raise argparse.ArgumentTypeError("Expects a floating point number") from None
+    if value <= 0.0:
+        raise argparse.ArgumentTypeError("Value must be positive")
+    return value
+
+
+def _int_at_least(minimum: int) -> Any:
+    """An argparse type: an integer of at least ``minimum``."""
+
+    def parse(text: str) -> int:
+        try:
+            value = int(text)
+        except ValueError:
+            value = minimum - 1
+        if value < minimum:
+            raise argparse.ArgumentTypeError(f"value must be an integer >= {minimum}")
+        return value
+
+    return parse
+
+
+_positive_int = _int_at_least(1)
+_nonnegative_int = _int_at_least(0)
+
+
+def _lazy(module: str, function: str) -> Any:
+    """A command's ``run`` that imports its module only when it runs."""
+
+    def run(args: argparse.Namespace) -> int:
+        import importlib
+
+        return int(getattr(importlib.import_module(module), function)(args))
+
+    return run
 
 
 def add_parser(commands: Any) -> None:
-    """Register the ``topic`` subcommands."""
-    topic = commands.add_parser("topic", help="topics: list, echo, pub, hz, info, type")
+    """Register the ``topic`` verbs."""
+    topic = commands.add_parser("topic", help="topics: list, echo, pub, hz, bw, info, type, find")
     sub = topic.add_subparsers(dest="verb", metavar="VERB", required=True)
 
-    p = sub.add_parser("list", help="list topics")
+    p = sub.add_parser("list", help="Output a list of available topics")
     p.add_argument("-t", "--show-types", action="store_true", help="show each topic's type")
+    p.add_argument("-c", "--count-topics", action="store_true", help="only count them")
     p.add_argument("-a", "--include-hidden-topics", action="store_true")
+    p.add_argument("-v", "--verbose", action="store_true", help="publishers and subscribers")
     add_router_option(p)
     p.set_defaults(run=_list)
 
-    p = sub.add_parser("echo", help="print the messages on a topic as YAML")
+    p = sub.add_parser("echo", help="Output messages from a topic")
     p.add_argument("topic_name")
-    p.add_argument("message_type", nargs="?", help="e.g. std_msgs/msg/String (default: discovered)")
-    p.add_argument("--once", action="store_true", help="print one message and exit")
+    p.add_argument("message_type", nargs="?", help="e.g. std_msgs/msg/String (default: found)")
+    add_qos_arguments(p, "subscribe", "sensor_data")
+    p.add_argument("--csv", action="store_true", help="every field, comma-separated")
+    p.add_argument("--field", help="a field to print, '.' between sub-fields (pose.position)")
     p.add_argument("--full-length", "-f", action="store_true", help="do not cut long arrays")
+    p.add_argument("--truncate-length", "-l", type=_nonnegative_int, default=128)
+    p.add_argument("--no-arr", action="store_true", help="do not print array fields")
+    p.add_argument("--no-str", action="store_true", help="do not print string fields")
+    p.add_argument("--flow-style", action="store_true", help="YAML in flow style")
+    p.add_argument("--no-lost-messages", action="store_true", help=argparse.SUPPRESS)
+    p.add_argument("--raw", action="store_true", help="the serialized (CDR) bytes")
+    p.add_argument("--filter", dest="filter_expr", help="a Python expression of m to select")
+    p.add_argument("--once", action="store_true", help="print one message and exit")
     p.add_argument(
         "--timeout",
-        type=float,
-        help="seconds to wait for the topic to appear (default: as long as it takes)",
+        type=_positive_float,
+        help="stop after this many seconds (also waiting for the topic to appear)",
     )
+    p.add_argument("--include-message-info", "-i", action="store_true")
     add_router_option(p)
-    p.set_defaults(run=_echo)
+    p.set_defaults(run=_lazy("launchkit.ros_cli.topic_echo", "echo"))
 
-    p = sub.add_parser("pub", help="publish a message")
+    p = sub.add_parser("pub", help="Publish a message to a topic")
     p.add_argument("topic_name")
     p.add_argument("message_type")
-    p.add_argument("values", nargs="?", default="{}", help="YAML, e.g. '{data: hello}'")
+    values = p.add_mutually_exclusive_group()
+    values.add_argument("values", nargs="?", default="{}", help="YAML, e.g. '{data: hello}'")
+    values.add_argument("--stdin", action="store_true", help="read the values from stdin")
+    p.add_argument("-r", "--rate", metavar="N", type=_positive_float, default=1.0)
+    p.add_argument("-p", "--print", metavar="N", type=int, default=1, dest="print_nth")
     mode = p.add_mutually_exclusive_group()
     mode.add_argument("-1", "--once", action="store_true", help="publish one message and exit")
-    mode.add_argument("-t", "--times", type=int, help="publish this many messages and exit")
-    p.add_argument("-r", "--rate", type=float, default=1.0, help="messages per second (1)")
-    p.add_argument("-w", "--wait-matching-subscriptions", type=int, default=None)
+    mode.add_argument("-t", "--times", type=_nonnegative_int, default=0)
+    p.add_argument("-w", "--wait-matching-subscriptions", type=_nonnegative_int, default=None)
+    p.add_argument("--max-wait-time-secs", type=_positive_float, default=None)
+    p.add_argument("--keep-alive", metavar="N", type=_positive_float, default=0.1)
+    p.add_argument("-n", "--node-name", help="the publishing node's name")
+    add_qos_arguments(p, "publish", "default")
     add_router_option(p)
-    p.set_defaults(run=_pub)
+    p.set_defaults(run=_lazy("launchkit.ros_cli.topic_pub", "pub"))
 
-    p = sub.add_parser("hz", help="print the rate of a topic")
+    p = sub.add_parser("hz", help="Print the average publishing rate to screen")
     p.add_argument("topic_name")
-    p.add_argument("-w", "--window", type=int, default=10000)
+    p.add_argument("--window", "-w", dest="window_size", type=_positive_int, default=10000)
+    p.add_argument("--filter", dest="filter_expr", help="only count messages m matching this")
+    p.add_argument("--wall-time", dest="use_wtime", action="store_true")
     add_router_option(p)
-    p.set_defaults(run=_hz)
+    p.set_defaults(run=_lazy("launchkit.ros_cli.topic_rates", "hz"))
 
-    p = sub.add_parser("info", help="a topic's type and endpoints")
+    p = sub.add_parser("bw", help="Display bandwidth used by topic")
+    p.add_argument("topic_name")
+    p.add_argument("--window", "-w", type=_positive_int, default=100)
+    add_router_option(p)
+    p.set_defaults(run=_lazy("launchkit.ros_cli.topic_rates", "bw"))
+
+    p = sub.add_parser("info", help="Print information about a topic")
     p.add_argument("topic_name")
     p.add_argument("-v", "--verbose", action="store_true")
     add_router_option(p)
     p.set_defaults(run=_info)
 
-    p = sub.add_parser("type", help="a topic's type")
+    p = sub.add_parser("type", help="Print a topic's type")
     p.add_argument("topic_name")
     add_router_option(p)
     p.set_defaults(run=_type)
 
+    p = sub.add_parser("find", help="Output a list of available topics of a given type")
+    p.add_argument("topic_type")
+    p.add_argument("-c", "--count-topics", action="store_true")
+    p.add_argument("-a", "--include-hidden-topics", action="store_true")
+    add_router_option(p)
+    p.set_defaults(run=_find)
 
-def _topics(tokens: list[Token], hidden: bool) -> dict[str, set[str]]:
-    topics: dict[str, set[str]] = {}
-    for t in tokens:
-        if t.kind in ("MP", "MS") and (hidden or not hidden_name(t.topic)):
-            topics.setdefault(t.topic, set()).add(t.type_name)
-    return topics
+
+def _topics(tokens: list[Token], hidden: bool) -> dict[str, list[str]]:
+    return names_and_types(tokens, ("MP", "MS"), hidden)
 
 
 def _list(args: argparse.Namespace) -> int:
+    tokens = graph_once(args)
+    topics = _topics(tokens, args.include_hidden_topics)
+    if args.count_topics:
+        print(len(topics))
+        return 0
+    if args.verbose:
+        for kind, title, noun in (
+            ("MP", "Published", "publisher"),
+            ("MS", "Subscribed", "subscriber"),
+        ):
+            lines = [f"{title} topics:"]
+            for name, types in topics.items():
+                count = sum(t.kind == kind and t.topic == name for t in tokens)
+                if count:
+                    plural = "s" if count > 1 else ""
+                    lines.append(f" * {name} [{', '.join(types)}] {count} {noun}{plural}")
+            print("\n".join(lines) + "\n")
+        return 0
+    print_names(topics, args.show_types)
+    return 0
+
+
+def _find(args: argparse.Namespace) -> int:
     topics = _topics(graph_once(args), args.include_hidden_topics)
-    for name in sorted(topics):
-        suffix = f" [{', '.join(sorted(topics[name]))}]" if args.show_types else ""
-        print(f"{name}{suffix}")
+    found = {name: types for name, types in topics.items() if args.topic_type in types}
+    if args.count_topics:
+        print(len(found))
+        return 0
+    print_names(found, False)
     return 0
 
 
-def _discover_type(node: Any, topic: str, timeout: float | None) -> tuple[str, list[Token]]:
-    """The type of ``topic`` from the graph, and the graph it was found in; like ros2, wait
-    until something publishes or subscribes to it, saying so once (``timeout`` seconds at most;
-    None: as long as it takes)."""
-    deadline = None if timeout is None else time.monotonic() + timeout
-    warned = False
-    while True:
-        tokens = graph_tokens(node)
-        types = _topics(tokens, True).get(topic, set())
-        if len(types) == 1:
-            return types.pop(), tokens
-        if len(types) > 1:
-            raise CliUsageError(
-                f"topic {topic} has several types: {', '.join(sorted(types))}",
-                expected="the message type as the second argument",
-            )
-        if deadline is not None and time.monotonic() > deadline:
-            raise CliUsageError(
-                f"could not determine the type of {topic}: nothing publishes or subscribes to it",
-                expected="a topic from `launchkit topic list`, or the message type as argument",
-            )
-        if not warned:
-            print(f"WARNING: topic [{topic}] does not appear to be published yet", flush=True)
-            warned = True
-        if not node.context.ok():
-            raise KeyboardInterrupt
-        time.sleep(0.1)
-
-
-def _echo_qos(tokens: list[Token], topic: str) -> QoSProfile:
-    publishers = [t.qos for t in tokens if t.kind == "MP" and t.topic == topic and t.qos]
-    best_effort = any(q.reliability == ReliabilityPolicy.BEST_EFFORT for q in publishers)
-    latched = bool(publishers) and all(
-        q.durability == DurabilityPolicy.TRANSIENT_LOCAL for q in publishers
-    )
-    return QoSProfile(
-        depth=10,
-        reliability=ReliabilityPolicy.BEST_EFFORT if best_effort else ReliabilityPolicy.RELIABLE,
-        durability=DurabilityPolicy.TRANSIENT_LOCAL if latched else DurabilityPolicy.VOLATILE,
-    )
-
-
-def _echo(args: argparse.Namespace) -> int:
-    from launchkit.ros.message_data import to_yaml
-    from launchkit.ros.msgs import get_message, normalize_type_name
-
+def _known_topic(args: argparse.Namespace) -> tuple[list[str], list[Token]]:
+    """The types of the topic the user named, and its endpoints; a usage error if unknown."""
     topic = normalize_topic(args.topic_name)
-    given = args.message_type
-    msg_class = get_message(given) if given else None
-    with cli_node(args) as node:
-        if given:
-            type_name, tokens = normalize_type_name(given), graph_tokens(node)
-        else:
-            type_name, tokens = _discover_type(node, topic, args.timeout)
-        msg_class = msg_class or get_message(type_name)
-        truncate = None if args.full_length else 128
-        done = threading.Event()
-
-        def show(msg: Any) -> None:
-            sys.stdout.write(to_yaml(msg, truncate) + "---\n")
-            sys.stdout.flush()
-            if args.once:
-                done.set()
-
-        node.create_subscription(msg_class, topic, show, _echo_qos(tokens, topic))
-        _spin_until(node, done)
-    return 0
-
-
-def _spin_until(node: Any, done: threading.Event) -> None:
-    from launchkit.ros.executor import spin_once
-
-    while not done.is_set() and node.context.ok():
-        spin_once(node, timeout_sec=0.1)
-
-
-def _pub(args: argparse.Namespace) -> int:
-    from launchkit.ros.clock import Clock, ClockType
-    from launchkit.ros.message_data import from_yaml
-    from launchkit.ros.msgs import get_message
-    from launchkit.ros.rate import Rate
-
-    topic = normalize_topic(args.topic_name)
-    msg_class = get_message(args.message_type)
-    msg = from_yaml(msg_class._TYPE_NAME, args.values)
-    if args.rate <= 0:
-        raise CliUsageError(
-            f"invalid rate {args.rate}", expected="a rate > 0 (messages per second)"
-        )
-    times = 1 if args.once else args.times
-    with cli_node(args) as node:
-        pub = node.create_publisher(msg_class, topic, 10)
-        wanted = args.wait_matching_subscriptions
-        if wanted is None:
-            wanted = 1 if times else 0
-        if wanted:
-            # like ros2: give subscribers a moment to match so a --once message is not lost
-            pub.wait_for_subscriptions(wanted, timeout_sec=2.0)
-        print("publisher: beginning loop")
-        rate = Rate(args.rate, Clock(clock_type=ClockType.STEADY_TIME), context=node.context)
-        count = 0
-        while True:
-            count += 1
-            print(f"publishing #{count}: {_one_line(msg)}\n", flush=True)
-            pub.publish(msg)
-            if times is not None and count >= times:
-                break
-            rate.sleep()
-        if times is not None:
-            _linger(pub)
-    return 0
-
-
-def _linger(pub: Any) -> None:
-    # put() hands the sample to zenoh's threads and closing the session drops what is still
-    # queued: give the last message a moment to leave before the command exits
-    time.sleep(0.1)
-
-
-def _one_line(msg: Any) -> str:
-    from launchkit.ros.message_data import short_repr
-
-    return short_repr(msg)
-
-
-def _hz(args: argparse.Namespace) -> int:
-    from launchkit.ros.msgs import get_message
-
-    topic = normalize_topic(args.topic_name)
-    with cli_node(args) as node:
-        type_name, tokens = _discover_type(node, topic, None)
-        stamps: list[float] = []
-        lock = threading.Lock()
-
-        def on_message(_: bytes) -> None:
-            with lock:
-                stamps.append(time.monotonic())
-                del stamps[: -args.window - 1]
-
-        node.create_subscription(
-            get_message(type_name),
-            topic,
-            on_message,
-            _echo_qos(tokens, topic),
-            raw=True,
-        )
-        next_report = time.monotonic() + 1.0
-        from launchkit.ros.executor import spin_once
-
-        while node.context.ok():
-            spin_once(node, timeout_sec=max(0.0, next_report - time.monotonic()))
-            if time.monotonic() >= next_report:
-                next_report += 1.0
-                with lock:
-                    print(_rate_report(stamps), flush=True)
-    return 0
-
-
-def _rate_report(stamps: list[float]) -> str:
-    if len(stamps) < 2:
-        return "no new messages"
-    gaps = [b - a for a, b in itertools.pairwise(stamps)]
-    mean = sum(gaps) / len(gaps)
-    std = math.sqrt(sum((g - mean) ** 2 for g in gaps) / len(gaps))
-    return (
-        f"average rate: {1.0 / mean:.3f}\n"
-        f"\tmin: {min(gaps):.3f}s max: {max(gaps):.3f}s std dev: {std:.5f}s window: {len(stamps)}"
-    )
-
-
-def _info(args: argparse.Namespace) -> int:
-    topic = normalize_topic(args.topic_name)
-    tokens = [t for t in graph_once(args) if t.topic == topic and t.kind in ("MP", "MS")]
-    if not tokens:
-        raise CliUsageError(
-            f"unknown topic {topic}", expected="a topic listed by `launchkit topic list`"
-        )
-    types = sorted({t.type_name for t in tokens})
-    pubs = [t for t in tokens if t.kind == "MP"]
-    subs = [t for t in tokens if t.kind == "MS"]
-    print(f"Type: {'; '.join(types)}\n")
-    for label, group in (("Publisher", pubs), ("Subscription", subs)):
-        print(f"{label} count: {len(group)}\n")
-        if args.verbose:
-            for t in group:
-                print(_endpoint(t, label))
-    return 0
-
-
-def _endpoint(t: Token, label: str) -> str:
-    qos = t.qos or QoSProfile(depth=10)
-    gid = ".".join(f"{b:02x}" for b in t.gid)
-    return (
-        f"Node name: {t.node_name}\n"
-        f"Node namespace: {t.namespace}\n"
-        f"Topic type: {t.type_name}\n"
-        f"Topic type hash: {t.type_hash}\n"
-        f"Endpoint type: {label.upper()}\n"
-        f"GID: {gid}\n"
-        f"QoS profile:\n"
-        f"  Reliability: {qos.reliability.name}\n"
-        f"  History (Depth): {qos.history.name} ({qos.depth})\n"
-        f"  Durability: {qos.durability.name}\n"
-    )
-
-
-def _type(args: argparse.Namespace) -> int:
-    topic = normalize_topic(args.topic_name)
-    types = _topics(graph_once(args), True).get(topic)
+    tokens = graph_once(args)
+    types = _topics(tokens, True).get(topic)
     if not types:
         raise CliUsageError(
             f"unknown topic {topic}", expected="a topic listed by `launchkit topic list`"
         )
-    for name in sorted(types):
+    return types, [t for t in tokens if t.topic == topic]
+
+
+def _type(args: argparse.Namespace) -> int:
+    types, _ = _known_topic(args)
+    for name in types:
         print(name)
     return 0
+
+
+def _info(args: argparse.Namespace) -> int:
+    types, tokens = _known_topic(args)
+    end = "\n\n" if args.verbose else "\n"
+    # ros2 prints one type bare and several as a Python list
+    print(f"Type: {types[0] if len(types) == 1 else types}", end=end)
+    for kind, label in (("MP", "Publisher"), ("MS", "Subscription")):
+        group = [t for t in tokens if t.kind == kind]
+        print(f"{label} count: {len(group)}", end=end)
+        if args.verbose:
+            for token in group:
+                print(
+                    endpoint_text(token, "PUBLISHER" if kind == "MP" else "SUBSCRIPTION"), end=end
+                )
+    return 0
+
+
+def endpoint_text(token: Token, endpoint_type: str) -> str:
+    """One endpoint as rclpy's ``TopicEndpointInfo`` prints it (``topic info -v``)."""
+    from launchkit.ros.qos import HistoryPolicy, QoSProfile
+
+    qos = token.qos or QoSProfile(depth=10)
+    gid = ".".join(f"{b:02x}" for b in token.gid)
+    depth = (
+        f"{qos.history.name} ({qos.depth})"
+        if qos.history == HistoryPolicy.KEEP_LAST
+        else qos.history.name
+    )
+    return "\n".join(
+        [
+            f"Node name: {token.node_name}",
+            f"Node namespace: {token.namespace}",
+            f"Topic type: {token.type_name}",
+            f"Topic type hash: {token.type_hash}",
+            f"Endpoint type: {endpoint_type}",
+            f"GID: {gid}",
+            "QoS profile:",
+            f"  Reliability: {qos.reliability.name}",
+            f"  History (Depth): {depth}",
+            f"  Durability: {qos.durability.name}",
+            # rmw_zenoh's keys carry the durations and liveliness too; launchkit's endpoints
+            # always have the defaults, which rclpy prints as these
+            "  Lifespan: Infinite",
+            "  Deadline: Infinite",
+            "  Liveliness: AUTOMATIC",
+            "  Liveliness lease duration: Infinite",
+        ]
+    )

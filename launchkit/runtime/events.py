@@ -10,7 +10,8 @@ The launcher writes one JSON object a line on a Unix stream socket it inherited 
     {"event": "exited", "process": "talker-1", "pid": 4242, "returncode": 0}
     {"event": "ready"}                          the first pass is done
     {"event": "failed", "message": "f.xml:3:5: error: ..."}   before ready; the launcher exits 2
-    {"event": "error", "message": "..."}        while running; shutdown follows
+    {"event": "error", "message": "..."}        while running; shutdown follows (but for a
+                                                process that could not start in a missing folder)
     {"event": "shutdown", "reason": "..."}
 
 The socket is also a lifeline: when the test process goes away (its end closes), the launcher

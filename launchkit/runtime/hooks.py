@@ -19,7 +19,8 @@ class SupervisorHooks:
         """The first pass is done: every process the file starts at once has been started."""
 
     def launch_error(self, message: str) -> None:
-        """Something failed while running (already reported on screen); shutdown follows."""
+        """Something failed while running (already reported on screen); shutdown follows,
+        but for a process whose working folder is missing (which fails alone, as in ROS)."""
 
     def process_started(self, process: SupervisedProcess) -> None:
         """``process`` has a new incarnation (a first start or a respawn) with a pid."""

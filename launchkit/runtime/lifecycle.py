@@ -29,8 +29,7 @@ from __future__ import annotations
 import enum
 import signal
 from collections.abc import Callable
-
-from launchkit._record import Frozen
+from dataclasses import dataclass
 
 
 class State(enum.Enum):
@@ -44,15 +43,12 @@ class State(enum.Enum):
     FAILED = "failed"
 
 
-class Escalation(Frozen):
+@dataclass(frozen=True)
+class Escalation:
     """The signals that stop a process, in order, each with how many seconds it gets before
     the next one is sent (None for the last: nothing comes after it)."""
 
-    __slots__ = ("steps",)
     steps: tuple[tuple[signal.Signals, float | None], ...]
-
-    def __init__(self, steps: tuple[tuple[signal.Signals, float | None], ...]) -> None:
-        object.__setattr__(self, "steps", steps)
 
     @classmethod
     def ros(cls, sigterm_timeout: float, sigkill_timeout: float) -> Escalation:
@@ -85,37 +81,20 @@ class Escalation(Frozen):
         return signals[index] if index < len(signals) else None
 
 
-class RespawnPolicy(Frozen):
+@dataclass(frozen=True)
+class RespawnPolicy:
     """Whether a process that exits on its own is started again: after ``delay`` seconds, at
     most ``max_retries`` times (negative: without limit), as ROS's ``respawn`` attributes.
 
     An incarnation that ran less than ``quick_exit`` seconds failed quickly: the k-th such
     exit in a row waits at least ``backoff_first * 2**(k-1)`` seconds, at most ``backoff_max``."""
 
-    __slots__ = ("backoff_first", "backoff_max", "delay", "enabled", "max_retries", "quick_exit")
-    enabled: bool
-    delay: float
-    max_retries: int
-    quick_exit: float
-    backoff_first: float
-    backoff_max: float
-
-    def __init__(
-        self,
-        enabled: bool = False,
-        delay: float = 0.0,
-        max_retries: int = -1,
-        quick_exit: float = 1.0,
-        backoff_first: float = 0.1,
-        backoff_max: float = 10.0,
-    ) -> None:
-        setattr_ = object.__setattr__
-        setattr_(self, "enabled", enabled)
-        setattr_(self, "delay", delay)
-        setattr_(self, "max_retries", max_retries)
-        setattr_(self, "quick_exit", quick_exit)
-        setattr_(self, "backoff_first", backoff_first)
-        setattr_(self, "backoff_max", backoff_max)
+    enabled: bool = False
+    delay: float = 0.0
+    max_retries: int = -1
+    quick_exit: float = 1.0
+    backoff_first: float = 0.1
+    backoff_max: float = 10.0
 
     def wait(self, quick_exits: int) -> float:
         """Seconds before the next start after ``quick_exits`` quick exits in a row."""
@@ -125,59 +104,33 @@ class RespawnPolicy(Frozen):
         return max(self.delay, backoff)
 
 
-class SendSignal(Frozen):
+@dataclass(frozen=True)
+class SendSignal:
     """Effect: send ``signum`` to the process (its whole group). When it escalates,
     ``escalated_from`` is the signal that did not stop the process in ``waited`` seconds."""
 
-    __slots__ = ("escalated_from", "signum", "waited")
     signum: signal.Signals
-    escalated_from: signal.Signals | None
-    waited: float
-
-    def __init__(
-        self,
-        signum: signal.Signals,
-        escalated_from: signal.Signals | None = None,
-        waited: float = 0.0,
-    ) -> None:
-        object.__setattr__(self, "signum", signum)
-        object.__setattr__(self, "escalated_from", escalated_from)
-        object.__setattr__(self, "waited", waited)
+    escalated_from: signal.Signals | None = None
+    waited: float = 0.0
 
 
-class Respawn(Frozen):
+@dataclass(frozen=True)
+class Respawn:
     """Effect: start a new incarnation of the process now (its backoff is over)."""
 
-    __slots__ = ()
 
-
-class ExitOutcome(Frozen):
+@dataclass(frozen=True)
+class ExitOutcome:
     """What an exit means: ``expected`` when a signal we sent ended it; ``respawn_in`` seconds
     when a respawn is scheduled (``quick_exits``: how many exits in a row came soon after their
     start, which lengthens the wait); ``gave_up_after`` retries when the policy's limit is
     reached."""
 
-    __slots__ = ("code", "expected", "gave_up_after", "quick_exits", "respawn_in")
     code: int
     expected: bool
-    respawn_in: float | None
-    gave_up_after: int | None
-    quick_exits: int
-
-    def __init__(
-        self,
-        code: int,
-        expected: bool,
-        respawn_in: float | None = None,
-        gave_up_after: int | None = None,
-        quick_exits: int = 0,
-    ) -> None:
-        setattr_ = object.__setattr__
-        setattr_(self, "code", code)
-        setattr_(self, "expected", expected)
-        setattr_(self, "respawn_in", respawn_in)
-        setattr_(self, "gave_up_after", gave_up_after)
-        setattr_(self, "quick_exits", quick_exits)
+    respawn_in: float | None = None
+    gave_up_after: int | None = None
+    quick_exits: int = 0
 
 
 class Lifecycle:

@@ -14,9 +14,9 @@ import os
 import shutil
 import time
 from collections.abc import Mapping
+from dataclasses import dataclass
 from pathlib import Path
 
-from launchkit._record import Frozen, Record
 from launchkit.envvars import LOG_FILE_MB, LOG_KEEP_RUNS, LOG_RUN_MB
 from launchkit.errors import UserError
 
@@ -24,22 +24,15 @@ RUN_MARKER = ".launchkit-run"
 _MB = 1024 * 1024
 
 
-class LogLimits(Frozen):
+@dataclass(frozen=True)
+class LogLimits:
     """How much a run may log: a file's size before it is rotated (bytes, 0: never), a run
     folder's size after which child output is no longer logged (bytes, 0: no limit), and how
     many run folders are kept (0: all)."""
 
-    __slots__ = ("file_bytes", "keep_runs", "run_bytes")
-    file_bytes: int
-    run_bytes: int
-    keep_runs: int
-
-    def __init__(
-        self, file_bytes: int = 50 * _MB, run_bytes: int = 1000 * _MB, keep_runs: int = 50
-    ) -> None:
-        object.__setattr__(self, "file_bytes", file_bytes)
-        object.__setattr__(self, "run_bytes", run_bytes)
-        object.__setattr__(self, "keep_runs", keep_runs)
+    file_bytes: int = 50 * _MB
+    run_bytes: int = 1000 * _MB
+    keep_runs: int = 50
 
     @classmethod
     def from_environment(cls, environment: Mapping[str, str]) -> LogLimits:
@@ -78,16 +71,12 @@ def log_root(environment: Mapping[str, str]) -> Path:
     return Path(environment.get("HOME", "~")).expanduser() / ".launchkit" / "log"
 
 
-class RunDir(Record):
+@dataclass
+class RunDir:
     """A run's log folder, and the open marker that says it is in use."""
 
-    __slots__ = ("marker_fd", "path")
     path: Path
     marker_fd: int
-
-    def __init__(self, path: Path, marker_fd: int) -> None:
-        self.path = path
-        self.marker_fd = marker_fd
 
     def release(self) -> None:
         """The run is over: its folder may be pruned by later runs."""

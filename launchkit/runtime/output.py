@@ -44,16 +44,24 @@ class Output:
     ) -> None:
         """``[LEVEL] [logger]: message`` to the screen (unless not ``screen``; in bold on a
         terminal if ``bold``) and launch.log."""
-        text = printable(f"[{level}] [{logger}]: {message}")
+        self._launch_lines(level, [printable(f"[{level}] [{logger}]: {message}")], screen, bold)
+
+    def launch_error(self, formatted: str, *, screen: bool = True) -> None:
+        """An error as :meth:`LaunchkitError.format` wrote it (each of its lines escaped there):
+        ``[ERROR] [launch]: FILE:LINE: error: ...``, then its quoted lines and hint below it."""
+        first, *rest = formatted.split("\n")
+        self._launch_lines("ERROR", [printable(f"[ERROR] [launch]: {first}"), *rest], screen)
+
+    def _launch_lines(self, level: str, lines: list[str], screen: bool, bold: bool = False) -> None:
         if self._logs is not None:
-            self._logs.write(_LAUNCH_LOG, [text], child=False)
+            self._logs.write(_LAUNCH_LOG, lines, child=False)
         if not screen:
             return
         if self.colour and level in _LEVEL_COLOURS:
-            text = f"{_LEVEL_COLOURS[level]}{text}{_RESET}"
+            lines = [f"{_LEVEL_COLOURS[level]}{line}{_RESET}" for line in lines]
         elif self.colour and bold:
-            text = f"{_BOLD}{text}{_RESET}"
-        self._write([text])
+            lines = [f"{_BOLD}{line}{_RESET}" for line in lines]
+        self._write(lines)
 
     def child_lines(self, label: str, index: int, lines: list[str], mode: str, stream: str) -> None:
         """Lines of a child's output, routed by its ``output`` mode, written in one go."""

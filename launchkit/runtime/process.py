@@ -19,9 +19,9 @@ import shutil
 import signal
 import subprocess
 from collections.abc import Callable
+from dataclasses import dataclass, field
 from typing import Protocol
 
-from launchkit._record import Record
 from launchkit.description.process_spec import ProcessSpec
 from launchkit.errors import LaunchFileError, LaunchkitError
 from launchkit.runtime.lifecycle import Escalation, Lifecycle, RespawnPolicy, State
@@ -34,18 +34,13 @@ READ_CHUNK = 64 * 1024
 _GATE = 'read -r _ || exit 125; exec "$0" "$@" </dev/null'
 
 
-class Stream(Record):
+@dataclass
+class Stream:
     """One output channel of a child (a pipe, or a pty for emulate_tty)."""
 
-    __slots__ = ("fd", "kind", "lines")
     fd: int
     kind: str  # "stdout" or "stderr"
-    lines: LineBuffer
-
-    def __init__(self, fd: int, kind: str, lines: LineBuffer | None = None) -> None:
-        self.fd = fd
-        self.kind = kind
-        self.lines = LineBuffer() if lines is None else lines
+    lines: LineBuffer = field(default_factory=LineBuffer)
 
 
 def lifecycle_of(spec: ProcessSpec) -> Lifecycle:
@@ -293,14 +288,17 @@ def group_exists(pgid: int | None) -> bool:
     return True
 
 
+def missing_folder(spec: ProcessSpec) -> bool:
+    """Whether ``spec`` runs on this host in a working folder that does not exist (as in ROS,
+    that process fails to start and the launch goes on)."""
+    return bool(spec.cwd) and not spec.machine and not os.path.isdir(spec.cwd or "")
+
+
 def check_program(spec: ProcessSpec) -> None:
-    """Fail before anything starts when a process's working folder or program does not exist."""
-    if spec.cwd and not os.path.isdir(spec.cwd):
-        raise LaunchFileError(
-            f"working folder '{spec.cwd}' of process '{spec.name}' does not exist",
-            spec.location,
-            expected="an existing folder in cwd=",
-        )
+    """Fail before anything starts when a process's program does not exist (its working
+    folder is looked for when it starts: see :func:`missing_folder`)."""
+    if missing_folder(spec):
+        return  # reported when it starts; its program is relative to a folder that is not
     program = spec.cmd[0]
     if "/" in program:
         path = program if os.path.isabs(program) else os.path.join(spec.cwd or os.getcwd(), program)

@@ -28,11 +28,13 @@ class ProcessReport:
         self._hooks.process_started(process)
 
     def could_not_start(self, process: SupervisedProcess, error: OSError) -> None:
-        """Spawning failed (the launch then shuts down)."""
+        """Spawning failed (the launch then shuts down, unless the working folder is missing)."""
         spec = process.spec
         where = f" ({spec.location})" if spec.location else ""
         what = error.filename if error.filename is not None else spec.cmd[0]
         message = f"could not start process: {error.strerror}: '{what}'{where}"
+        if spec.cwd and what == spec.cwd:
+            message = f"could not start process: its working folder '{what}' does not exist{where}"
         self._line("ERROR", process, message)
         self._hooks.launch_error(f"{process.label}: {message}")
 

@@ -9,7 +9,7 @@ from dataclasses import dataclass, field
 from typing import TYPE_CHECKING
 
 from launchkit.description.process_spec import ProcessSpec
-from launchkit.errors import printable
+from launchkit.errors import Location, printable
 
 if TYPE_CHECKING:
     from launchkit.description.launch_context import (
@@ -24,7 +24,7 @@ if TYPE_CHECKING:
 @dataclass
 class Recorded:
     """One thing the launch would do: a process, a timer or an event handler (with what it
-    would do), a shutdown, or a log line."""
+    would do), a shutdown, a log line, or a call of the launch file's own code (on an event)."""
 
     kind: str
     delay: float = 0.0
@@ -81,14 +81,21 @@ class Recorder:
         outer, self._target = self._target, item.inner
         self._expanding.append(handler)
         context = self.context
+        calling, context.instead_of_calling = context.instead_of_calling, self.would_call
         try:
             assert handler.snapshot is not None
             with context.restored(handler.snapshot), context.local("event", _Placeholder("event")):
                 for action in children:
                     action.visit(context)
         finally:
+            context.instead_of_calling = calling
             self._expanding.pop()
             self._target = outer
+
+    def would_call(self, what: str, location: Location | None) -> None:
+        """Record the launch file's code an event handler would run (never run here: ROS runs
+        it only on the event)."""
+        self._target.append(Recorded("call", text=what + (f"  ({location})" if location else "")))
 
     def stop_processes(self, matcher: Callable[[object], bool], signum: int | None) -> None:
         """Record the stop (which processes it reaches is known only while running)."""
@@ -171,9 +178,11 @@ def render(items: list[Recorded], indent: str = "") -> str:
             lines.append(render(item.inner, indent + "  ") or f"{indent}  (nothing)")
         elif item.kind == "handler":
             add(f"{indent}event handler {item.text}:")
-            lines.append(render(item.inner, indent + "  ") or f"{indent}  (a Python function)")
+            lines.append(render(item.inner, indent + "  ") or f"{indent}  (nothing)")
         elif item.kind == "shutdown":
             add(f"{indent}shutdown: {item.text}")
+        elif item.kind == "call":
+            add(f"{indent}calls {item.text}")
         else:
             add(f"{indent}{item.text}")
     return "\n".join(line for line in lines if line)

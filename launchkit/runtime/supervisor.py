@@ -45,6 +45,7 @@ from launchkit.runtime.process import (
     by_machine,
     check_program,
     check_programs,
+    missing_folder,
 )
 from launchkit.runtime.process_io import POLL_INTERVAL, ProcessIO
 from launchkit.runtime.process_report import ProcessReport
@@ -113,8 +114,8 @@ class Supervisor:
                 self._start_new(spec)
 
     def schedule_timer(self, period: float, timer: DelayedActions, snapshot: Snapshot) -> None:
-        """Fire ``timer`` after ``period`` seconds."""
-        self._timers.add(self.clock() + period, timer, snapshot)
+        """Fire ``timer`` ``period`` seconds after the evaluation setting it (see timers.py)."""
+        self._timers.add(period, timer, snapshot)
 
     def request_shutdown(self, reason: str) -> None:
         """``<shutdown>``: stop everything."""
@@ -152,10 +153,14 @@ class Supervisor:
             context.child_groups = self._cleanup
             context.uninterrupted = self._signals.deferred
             self._first_pass(description, context)
+            self._timers.arm(self.clock())  # the timers it set count from now
             self.hooks.launch_ready()
             self._relay.drain(self.fail)
-            while not self._done():
-                self.step(self._timeout())
+            while True:
+                while not self._done():
+                    self.step(self._timeout())
+                if not self._went_idle():
+                    break
         finally:
             self.close()
         return self.exit_code
@@ -217,6 +222,7 @@ class Supervisor:
         self._io.poll(self.processes)
         self._run_due()
         self._relay.drain(self.fail)  # the handlers of what happened; an error shuts down
+        self._timers.arm(self.clock())
 
     def _done(self) -> bool:
         if any(p.alive for p in self.processes):
@@ -224,6 +230,19 @@ class Supervisor:
         if any(p.state is State.BACKOFF for p in self.processes) and not self.shutting_down:
             return False
         return not self._timers
+
+    def _went_idle(self) -> bool:
+        """Nothing runs or waits any more and nothing asked to shut down: as ROS, the launch
+        shuts down with ``Shutdown(reason='idle')``, whose OnShutdown handlers run now (what
+        they start keeps the loop going); False once it has."""
+        if self.shutting_down:
+            return False
+        self.shutting_down = True
+        self._timers.cancel_on_shutdown()
+        if (error := self._relay.shutting_down("idle", False)) is not None:
+            self.fail(error)
+        self._timers.arm(self.clock())
+        return True
 
     def _timeout(self) -> float | None:
         lifecycles = (p.lifecycle.deadline for p in self.processes)
@@ -261,7 +280,7 @@ class Supervisor:
 
     def fail(self, error: LaunchkitError) -> None:
         """An error while running: report it where it happened and shut down, exit 1."""
-        self.output.launch_line("ERROR", "launch", error.format())
+        self.output.launch_error(error.format())
         self.hooks.launch_error(error.format())
         self.exit_code = self.exit_code or 1
         self.begin_shutdown("an error occurred", level="ERROR")
@@ -297,8 +316,9 @@ class Supervisor:
         except OSError as error:
             process.lifecycle.failed()
             self._report.could_not_start(process, error)
-            self.exit_code = self.exit_code or 1
-            self.begin_shutdown("a process could not be started", level="ERROR")
+            if not missing_folder(process.spec):  # which fails only its process, as in ROS
+                self.exit_code = self.exit_code or 1
+                self.begin_shutdown("a process could not be started", level="ERROR")
             return
         process.lifecycle.started(self.clock())
         self._watch(process)
@@ -348,6 +368,8 @@ class Supervisor:
         try:
             process.spawn()
         except OSError as error:
+            if missing_folder(spec):
+                raise RequestError(f"its working folder '{spec.cwd}' does not exist") from None
             raise RequestError(f"could not start '{spec.cmd[0]}': {error.strerror}") from None
         process.lifecycle.started(self.clock())
         self.processes.append(process)

@@ -33,9 +33,9 @@ import os
 import socket
 import threading
 from collections.abc import Mapping
+from dataclasses import dataclass
 from typing import Any
 
-from launchkit._record import Frozen
 from launchkit.envvars import SUPERVISOR_SOCKET
 
 MAX_PACKET = 65536
@@ -46,19 +46,14 @@ class SupervisorError(Exception):
     """The launcher refused a request (its reason is the message) or the connection failed."""
 
 
-class StartedProcess(Frozen):
+@dataclass(frozen=True)
+class StartedProcess:
     """A process the launcher started on request: its id (for :meth:`SupervisorClient.stop`),
     its first pid and the label its output lines are prefixed with."""
 
-    __slots__ = ("id", "label", "pid")
     id: int
     pid: int
     label: str
-
-    def __init__(self, id: int, pid: int, label: str) -> None:
-        object.__setattr__(self, "id", id)
-        object.__setattr__(self, "pid", pid)
-        object.__setattr__(self, "label", label)
 
 
 class SupervisorClient:

@@ -26,8 +26,8 @@ STARTED = re.compile(r"^\[INFO\] \[(?P<label>[^\]]+)\]: process started with pid
 #: its first line of output).
 SEED_NODES = {
     "gzserver": (
-        "launchkit.stock.gazebo_ros.server",
-        "gazebo_ros.server",
+        "launchkit.stock.gazebo_ros.gzserver",
+        "gzserver",
         "world 'default' loaded",
     ),
     "robot_state_publisher": (

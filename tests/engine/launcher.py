@@ -146,9 +146,10 @@ def wait_gone(pids: list[int], timeout: float = 10.0) -> None:
 
 
 def run_launchkit(
-    *args: str, cwd: Path, env: dict[str, str] | None = None
+    *args: str, cwd: Path, env: dict[str, str] | None = None, stdin: str | None = None
 ) -> subprocess.CompletedProcess[str]:
-    """Run the launchkit command line to completion; its output captured."""
+    """Run the launchkit command line to completion (``stdin`` its input); its output
+    captured."""
     return subprocess.run(
         [sys.executable, "-m", "launchkit", *args],
         cwd=cwd,
@@ -157,6 +158,7 @@ def run_launchkit(
         timeout=60,
         check=False,
         env={**os.environ, **(env or {})},
+        input=stdin,
     )
 
 

@@ -153,14 +153,26 @@ def test_check_says_what_it_did_not_check(tmp_path: Path) -> None:
     assert checked.returncode == 2 and "package 'no_such_pkg' not found" in checked.stderr
 
 
-def test_run_pkg_executable_says_to_use_exec(tmp_path: Path) -> None:
-    result = launchkit("run", "robot_state_publisher", "robot_state_publisher", cwd=tmp_path)
-    assert result.returncode == 2
-    assert result.stderr.startswith(
-        "error: 'robot_state_publisher' is an executable of package 'robot_state_publisher', "
-        "not a launch file"
-    )
-    assert "launchkit exec robot_state_publisher robot_state_publisher" in result.stderr
+def test_run_pkg_executable_runs_it_as_ros2_run_does(tmp_path: Path, ament_prefix: Path) -> None:
+    env = {"AMENT_PREFIX_PATH": str(ament_prefix)}
+    ran = launchkit("run", "amentpkg", "tool", "--ros-args", "-p", "x:=1", cwd=tmp_path, env=env)
+    assert ran.returncode == 0, ran.stderr
+    assert ran.stdout == "tool ran with --ros-args -p x:=1\n"
+    prefixed = launchkit("run", "--prefix", "echo via", "amentpkg", "tool", cwd=tmp_path, env=env)
+    assert prefixed.stdout == f"via {ament_prefix}/lib/amentpkg/tool\n"
+    # a package's launch file of that name comes first, as `launchkit run PKG FILE` always did
+    twin = ament_prefix / "lib" / "amentpkg" / "hello.launch.xml"
+    twin.write_text("#!/bin/sh\necho the executable\n")
+    twin.chmod(0o755)
+    launched = launchkit("run", "amentpkg", "hello.launch.xml", cwd=tmp_path, env=env)
+    assert "from ament" in launched.stdout and "the executable" not in launched.stdout
+
+
+def test_launch_is_run_under_ros2s_name(tmp_path: Path, ament_prefix: Path) -> None:
+    env = {"AMENT_PREFIX_PATH": str(ament_prefix)}
+    result = launchkit("launch", "amentpkg", "hello.launch.xml", cwd=tmp_path, env=env)
+    assert result.returncode == 0, result.stderr
+    assert "from ament" in result.stdout
 
 
 @pytest.mark.parametrize(

@@ -281,7 +281,7 @@ def test_a_program_called_by_bare_name_runs_the_stand_in(evaluate_xml: EvaluateX
     result = evaluate_xml(launch_file(body), env={"PATH": "/nonexistent"}, name="gz.launch.py")
     server, client = result.processes
     assert server.cmd == [
-        sys.executable, "-m", "launchkit.stock.gazebo_ros.server", "--verbose", "-s",
+        sys.executable, "-m", "launchkit.stock.gazebo_ros.gzserver", "--verbose", "-s",
         "libgazebo_ros_init.so",
     ]  # fmt: skip
     assert server.name == "gazebo" and server.is_node

@@ -1,7 +1,10 @@
-"""Start-up does only what the command needs: the modules a command imports are its own.
+"""Start-up does only what the command needs: a launch loads neither the ROS layer nor the
+simulator, and a launch that starts nothing makes no run folder and binds no socket (that a
+node process does not load the launch engine is tests/test_public_api.py's).
 
-No timing here (that is bench/launch_overhead.py's job): these check which libraries a command
-loads, which is what makes it slow or not, and which does not depend on the machine's load.
+No timing here (that is bench/launch_overhead.py's job): these check which libraries a process
+loads and what it creates, which is what makes it slow or not, and which does not depend on
+the machine's load.
 """
 
 from __future__ import annotations
@@ -11,110 +14,57 @@ import subprocess
 import sys
 from pathlib import Path
 
-HEAVY = ("numpy", "rosbags", "yaml", "lxml", "zenoh", "pybullet", "launchkit.ros.node")
+#: What a launch of files that start no node has no use for.
+ROS_AND_SIMULATION = ("numpy", "rosbags", "zenoh", "pybullet", "launchkit.ros.node")
 
 _PROBE = """
-import json, sys
+import json, socket, sys, tempfile
+made = []
+mkdtemp, bind = tempfile.mkdtemp, socket.socket.bind
+def recorded_mkdtemp(*args, **kwargs):
+    made.append("folder")
+    return mkdtemp(*args, **kwargs)
+def recorded_bind(self, address):
+    made.append("socket")
+    return bind(self, address)
+tempfile.mkdtemp, socket.socket.bind = recorded_mkdtemp, recorded_bind
 from launchkit.cli import main
 status = main(sys.argv[1:])
-loaded = sorted(m for m in sys.modules if m in {heavy!r} or m.startswith({prefixes!r}))
-print("LOADED " + json.dumps(loaded), file=sys.stderr)
+loaded = sorted(m for m in sys.modules if m in {modules!r})
+print("LOADED " + json.dumps([loaded, sorted(set(made))]), file=sys.stderr)
 """
 
-#: launchkit's description and tag modules: a file imports those of the tags it uses.
-DESCRIPTION = ("launchkit.description.", "launchkit.frontend.tags.")
 
-
-def loaded_by(*argv: str, prefixes: tuple[str, ...] = ()) -> list[str]:
-    """The heavy libraries (and modules starting with one of ``prefixes``) ``launchkit ARGV``
-    imported (run to completion in a fresh process)."""
-    probe = _PROBE.format(heavy=HEAVY, prefixes=prefixes)
+def launched(*argv: str) -> tuple[list[str], list[str]]:
+    """Which of :data:`ROS_AND_SIMULATION` ``launchkit ARGV`` imported, and what it made of
+    a temporary folder and a bound socket (run to completion in a fresh process)."""
+    probe = _PROBE.format(modules=ROS_AND_SIMULATION)
     result = subprocess.run(
-        [sys.executable, "-c", probe, *argv],
-        capture_output=True,
-        text=True,
-        timeout=120,
+        [sys.executable, "-c", probe, *argv], capture_output=True, text=True, timeout=120
     )
     line = [x for x in result.stderr.splitlines() if x.startswith("LOADED ")]
     assert line, result.stderr
-    return list(json.loads(line[-1][len("LOADED ") :]))
+    loaded, made = json.loads(line[-1][len("LOADED ") :])
+    return loaded, made
 
 
-def test_running_an_xml_file_loads_no_yaml_ros_or_simulation(tmp_path: Path) -> None:
-    # nor lxml: expat reads a plain file (launchkit/frontend/xml/expat_tree.py)
+def test_a_launch_loads_no_ros_layer_or_simulation(tmp_path: Path) -> None:
+    xml = tmp_path / "one.launch.xml"
+    xml.write_text("<launch>\n  <executable cmd='true'/>\n</launch>\n")
+    assert launched("run", str(xml))[0] == []
+    yaml = tmp_path / "one.launch.yaml"
+    yaml.write_text("launch:\n- executable: {cmd: 'true'}\n")
+    assert launched("run", str(yaml))[0] == []
+
+
+def test_a_launch_that_starts_nothing_makes_no_run_folder_or_socket(tmp_path: Path) -> None:
+    # The private run folder (and the orphan guard told about it) and the child-request
+    # socket are made when the first process starts.
     launch = tmp_path / "empty.launch.xml"
-    launch.write_text("<launch>\n  <executable cmd='true'/>\n</launch>\n")
-    assert loaded_by("run", str(launch)) == []
-
-
-def test_an_xml_file_expat_does_not_read_loads_lxml(tmp_path: Path) -> None:
-    launch = tmp_path / "entities.launch.xml"
     launch.write_text(
-        '<!DOCTYPE launch [<!ENTITY e "v">]>\n<launch><let name="&e;" value="1"/></launch>\n'
+        "<launch><let name='a' value='$(var b)'/><arg name='b' default='1'/></launch>\n"
     )
-    assert loaded_by("run", str(launch)) == ["lxml"]
-
-
-def test_running_a_yaml_file_loads_no_lxml(tmp_path: Path) -> None:
-    launch = tmp_path / "empty.launch.yaml"
-    launch.write_text("launch:\n- executable: {cmd: 'true'}\n")
-    assert loaded_by("run", str(launch)) == ["yaml"]
-
-
-def test_an_empty_launch_creates_no_dataclasses(tmp_path: Path) -> None:
-    # dataclasses imports inspect (ast, dis, tokenize) and compiles each class's methods at
-    # import: the modules every launch needs declare plain classes (launchkit._record). (lxml
-    # imports inspect too: a plain XML file is read with expat.)
-    xml = tmp_path / "empty.launch.xml"
-    xml.write_text("<launch/>\n")
-    assert loaded_by("run", str(xml), prefixes=("dataclasses", "inspect")) == []
-    yaml = tmp_path / "empty.launch.yaml"
-    yaml.write_text("launch: []\n")
-    assert loaded_by("run", str(yaml), prefixes=("dataclasses", "inspect")) == ["yaml"]
-
-
-def description_modules(tmp_path: Path, text: str) -> set[str]:
-    """The description and tag modules ``launchkit run`` of an XML file ``text`` imported."""
-    launch = tmp_path / "file.launch.xml"
-    launch.write_text(text)
-    return {m for m in loaded_by("run", str(launch), prefixes=DESCRIPTION) if m != "lxml"}
-
-
-def test_an_empty_file_imports_no_tag_action_or_substitution_modules(tmp_path: Path) -> None:
-    # What reading, checking and running any file needs; every tag's parser and action, and
-    # every $(...) kind, is imported when a file first uses it.
-    assert description_modules(tmp_path, "<launch/>\n") == {
-        "launchkit.description.actions",
-        "launchkit.description.actions.arg",
-        "launchkit.description.actions.base",
-        "launchkit.description.actions.group",
-        "launchkit.description.actions.include",
-        "launchkit.description.conditions",
-        "launchkit.description.events",
-        "launchkit.description.launch_context",
-        "launchkit.description.launch_description",
-        "launchkit.description.process_spec",
-        "launchkit.description.ros_link",
-        "launchkit.description.substitutions",
-        "launchkit.description.substitutions.base",
-        "launchkit.description.substitutions.grammar",
-        "launchkit.description.substitutions.package",
-        "launchkit.description.substitutions.paths",
-        "launchkit.description.substitutions.configuration",
-        "launchkit.description.truth",
-    }
-
-
-def test_a_file_imports_the_tag_modules_it_uses(tmp_path: Path) -> None:
-    executable = description_modules(
-        tmp_path, "<launch><executable cmd='true' if='$(env HOME)'/></launch>\n"
-    )
-    assert "launchkit.frontend.tags.launch" in executable
-    assert "launchkit.description.actions.executable" in executable
-    assert "launchkit.description.substitutions.environment" in executable
-    assert "launchkit.frontend.tags.ros" not in executable
-    assert "launchkit.description.actions.node" not in executable
-    assert "launchkit.description.substitutions.command" not in executable
-    node = description_modules(tmp_path, "<launch><node pkg='p' exec='e' if='false'/></launch>\n")
-    assert "launchkit.frontend.tags.ros" in node
-    assert "launchkit.description.actions.composition" in node  # <node> reads containers
+    assert launched("run", str(launch))[1] == []
+    started = tmp_path / "one.launch.xml"
+    started.write_text("<launch><executable cmd='true'/></launch>\n")
+    assert launched("run", str(started))[1] == ["folder", "socket"]

@@ -103,14 +103,15 @@ def spin_until(node: Node, predicate: Callable[[], bool], timeout: float, what: 
 
 def demo_package(prefix: Path) -> None:
     """An AMENT_PREFIX_PATH package ``demo`` whose executables run the test nodes (``talker``,
-    ``listener``): what ``launchkit exec demo talker`` and a launch's ``<node>`` start."""
+    ``listener``, ``knobs``): what ``launchkit exec demo talker`` and a launch's ``<node>``
+    start."""
     marker = prefix / "share" / "ament_index" / "resource_index" / "packages" / "demo"
     marker.parent.mkdir(parents=True)
     marker.write_text("")
     (prefix / "share" / "demo").mkdir(parents=True)
     lib = prefix / "lib" / "demo"
     lib.mkdir(parents=True)
-    for name in ("talker", "listener"):
+    for name in ("talker", "listener", "knobs"):
         exe = lib / name
         script = str(NODES_DIR / f"{name}.py")
         exe.write_text(

@@ -313,8 +313,13 @@ def test_the_cli_lists_and_shows_a_users_interfaces(prefixes: str) -> None:
     listed = [line.strip() for line in launchkit("list")]
     assert {"my_pkg/msg/Reading", "my_pkg/srv/Measure", "my_pkg/action/Move"} <= set(listed)
     assert listed.index("my_pkg/action/Move") > listed.index("Actions:")
-    assert launchkit("show", "my_pkg/action/Move")[:3] == [
-        "float64 distance",
+    # the file as ros2 interface show prints it: comments and defaults kept, the nested type's
+    # fields under its field
+    assert launchkit("show", "my_pkg/action/Move")[:6] == [
+        "# goal",
+        "float64 distance 1.0",
         "---",
         "float64 travelled",
+        "---",
+        "float32 progress",
     ]

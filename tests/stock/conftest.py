@@ -6,6 +6,7 @@ whole process group) when the test ends.
 
 from __future__ import annotations
 
+import contextlib
 import os
 import signal
 import socket
@@ -81,20 +82,27 @@ def processes(router: str) -> Iterator[Processes]:
         procs.stop_all()
 
 
-@pytest.fixture
-def probe(router: str) -> Iterator[Any]:
-    """A node in the test process, on its own context, to publish and subscribe with."""
+@contextlib.contextmanager
+def probe_node(name: str) -> Iterator[Any]:
+    """A node ``name`` in the test process, on its own context, destroyed after the block."""
     import launchkit.ros as ros
     from launchkit.ros.context import Context
 
     context = Context()
     context.init([])
-    node = ros.Node("stock_probe", context=context)
+    node = ros.Node(name, context=context)
     try:
         yield node
     finally:
         node.destroy_node()
         context.shutdown()
+
+
+@pytest.fixture
+def probe(router: str) -> Iterator[Any]:
+    """A node in the test process, on its own context, to publish and subscribe with."""
+    with probe_node("stock_probe") as node:
+        yield node
 
 
 def spin_until(

@@ -85,11 +85,33 @@ def test_command_line_options_and_ros_args() -> None:
     assert parse_args(["-f", "odom"]).fixed_frame == "odom"
 
 
+def test_real_rviz2_options_are_accepted_and_set_aside() -> None:
+    # rviz2's own (Jazzy's QCommandLineParser: -s, -l, -t, --fullscreen), ROS 1 rviz's that
+    # launch files still pass, and Qt's: none means anything to the browser viewer
+    from launchkit.stock.rviz2.cli import parse_args
+
+    args = parse_args(
+        ["-d", "robot.rviz", "-s", "splash.png", "--splash-screen=logo.png", "-l", "--ogre-log",
+         "-t", "{NAMESPACE} - RViz2", "--fullscreen", "--opengl", "210", "--disable-anti-aliasing",
+         "--no-stereo", "--stereo", "-platform", "xcb", "-f", "odom",
+         "--ros-args", "-r", "__node:=viz", "--"]
+    )  # fmt: skip
+    assert (args.display_config, args.fixed_frame) == (Path("robot.rviz"), "odom")
+    assert args.ignored == [
+        "-s", "splash.png", "--splash-screen=logo.png", "-l", "--ogre-log",
+        "-t", "{NAMESPACE} - RViz2", "--fullscreen", "--opengl", "210",
+        "--disable-anti-aliasing", "--no-stereo", "--stereo", "-platform", "xcb",
+    ]  # fmt: skip
+    assert parse_args([]).ignored == []
+
+
 def test_bad_option_is_a_user_error() -> None:
     from launchkit.stock.rviz2.cli import parse_args
 
-    with pytest.raises(UserError, match="unrecognized arguments: --bogus"):
+    with pytest.raises(UserError, match="unrecognized arguments: --bogus") as caught:
         parse_args(["--bogus"])
+    text = caught.value.format()  # the usage on one line, however long argparse wraps it
+    assert "\n" not in text and "\\n" not in text
 
 
 def test_port_default_comes_from_the_environment(monkeypatch: pytest.MonkeyPatch) -> None:

@@ -138,3 +138,37 @@ def pytest_runtest_makereport(item: pytest.Item, call: pytest.CallInfo[None]) ->
             except Exception as error:  # the browser went away: report that instead
                 report.sections.append(("viewer screenshot", f"none: {error}"))
     return report
+
+
+@pytest.fixture(scope="module")
+def panels_launch(launch_module: Any) -> Any:
+    """panels.launch.py (rviz2 on a free port and the nodes of panel_nodes.py), serving."""
+    from launchkit.testing._isolation import free_loopback_port
+
+    port = free_loopback_port()
+    handle = launch_module("panels.launch.py", args={"viewer_port": str(port)}, ready_timeout=60)
+    handle.process("rviz2").wait_output("Foxglove WebSocket on", timeout=60)
+    for role in ("talker", "listener", "driver", "follower", "logger", "tuner"):
+        handle.process(role).wait_output(f"{role} ready", timeout=60)
+    handle.viewer_url = f"http://127.0.0.1:{port}/"
+    return handle
+
+
+def open_panel(open_viewer: Callable[[str], Viewer], url: str, panel: str) -> Viewer:
+    """The viewer at ``url`` with ``panel`` shown (its tab clicked, as a person would)."""
+    viewer = open_viewer(url)
+    viewer.wait("s.connected", "the page connected")
+    viewer.page.locator(f'#tabs button[data-panel="{panel}"]').click()
+    viewer.wait(f"v.panel() === {json.dumps(panel)}", f"the {panel} panel shown")
+    return viewer
+
+
+def keep_screenshot(viewer: Viewer, name: str) -> Path:
+    """A picture of the page in the test's folder (``$LAUNCHKIT_PANEL_SHOTS`` keeps a copy
+    there, for looking at them after the run)."""
+    path = viewer.screenshot(name)
+    folder = os.environ.get("LAUNCHKIT_PANEL_SHOTS")
+    if folder:
+        Path(folder).mkdir(parents=True, exist_ok=True)
+        shutil.copy(path, Path(folder) / path.name)
+    return path

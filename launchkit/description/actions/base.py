@@ -2,8 +2,8 @@
 
 from __future__ import annotations
 
-from collections.abc import Sequence
-from typing import TYPE_CHECKING
+from collections.abc import Callable, Sequence
+from typing import TYPE_CHECKING, TypeVar
 
 from launchkit.description.events import ExecutionComplete
 from launchkit.description.substitutions.base import Value, perform
@@ -13,6 +13,8 @@ from launchkit.errors import LaunchkitError, Location, RuntimeLaunchError
 if TYPE_CHECKING:
     from launchkit.description.conditions import Condition
     from launchkit.description.launch_context import LaunchContext
+
+T = TypeVar("T")
 
 
 class Action:
@@ -53,28 +55,83 @@ class Action:
         return f"{type(self).__name__}({fields})"
 
 
+class NameAction(Action):
+    """An action on one name (``<unset_env>``, Python's ``UnsetLaunchConfiguration``): it
+    performs the name, then :meth:`apply` does what the tag says with it."""
+
+    def __init__(
+        self, name: Value, location: Location | None = None, condition: Condition | None = None
+    ) -> None:
+        super().__init__(location, condition)
+        self.name = name
+
+    def execute(self, context: LaunchContext) -> None:
+        """Perform the name and apply it."""
+        self.apply(context, perform(self.name, context))
+
+    def apply(self, context: LaunchContext, name: str) -> None:
+        """Do what the tag says with the performed name."""
+        raise NotImplementedError
+
+
+class NameValueAction(Action):
+    """An action on a name and a value (``<let>``, ``<set_env>``, ``<set_parameter>``,
+    ``<set_remap>``): it performs both, then :meth:`apply` stores them where the tag says."""
+
+    def __init__(
+        self,
+        name: Value,
+        value: Value,
+        location: Location | None = None,
+        condition: Condition | None = None,
+    ) -> None:
+        super().__init__(location, condition)
+        self.name = name
+        self.value = value
+
+    def execute(self, context: LaunchContext) -> None:
+        """Perform the name and the value and apply them."""
+        self.apply(context, perform(self.name, context), perform(self.value, context))
+
+    def apply(self, context: LaunchContext, name: str, value: str) -> None:
+        """Store the performed pair where the tag says."""
+        raise NotImplementedError
+
+
 def typed_float(value: Value, context: LaunchContext, what: str, loc: Location | None) -> float:
     """``value`` performed and read as a number; an error naming ``what`` otherwise."""
-    text = perform(value, context)
-    try:
-        return float(text)
-    except ValueError:
-        raise RuntimeLaunchError(f"{what} is {text!r}", loc, expected="a number") from None
+    return _converted(value, context, what, loc, float, "a number")
 
 
 def typed_int(value: Value, context: LaunchContext, what: str, loc: Location | None) -> int:
     """``value`` performed and read as an integer."""
-    text = perform(value, context)
-    try:
-        return int(text)
-    except ValueError:
-        raise RuntimeLaunchError(f"{what} is {text!r}", loc, expected="an integer") from None
+    return _converted(value, context, what, loc, int, "an integer")
 
 
 def typed_bool(value: Value, context: LaunchContext, what: str, loc: Location | None) -> bool:
     """``value`` performed and read as a boolean (YAML spellings)."""
+    return _converted(value, context, what, loc, _boolean, BOOL_EXPECTED)
+
+
+def _converted(
+    value: Value,
+    context: LaunchContext,
+    what: str,
+    loc: Location | None,
+    convert: Callable[[str], T],
+    expected: str,
+) -> T:
+    """``value`` performed and converted; an error naming ``what`` when ``convert`` refuses
+    the text (ValueError)."""
     text = perform(value, context)
+    try:
+        return convert(text)
+    except ValueError:
+        raise RuntimeLaunchError(f"{what} is {text!r}", loc, expected=expected) from None
+
+
+def _boolean(text: str) -> bool:
     result = bool_value(text)
     if result is None:
-        raise RuntimeLaunchError(f"{what} is {text!r}", loc, expected=BOOL_EXPECTED)
+        raise ValueError(text)
     return result

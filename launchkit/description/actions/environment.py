@@ -5,7 +5,7 @@ from __future__ import annotations
 import os
 from typing import TYPE_CHECKING
 
-from launchkit.description.actions.base import Action
+from launchkit.description.actions.base import Action, NameAction, NameValueAction
 from launchkit.description.substitutions.base import Value, perform
 from launchkit.errors import Location
 
@@ -14,44 +14,27 @@ if TYPE_CHECKING:
     from launchkit.description.launch_context import LaunchContext
 
 
-class SetEnv(Action):
+class SetEnv(NameValueAction):
     """Set variable NAME to VALUE for later processes in scope."""
 
     TAG = "set_env"
 
-    def __init__(
-        self,
-        name: Value,
-        value: Value,
-        location: Location | None = None,
-        condition: Condition | None = None,
-    ) -> None:
-        super().__init__(location, condition)
-        self.name = name
-        self.value = value
-
-    def execute(self, context: LaunchContext) -> None:
+    def apply(self, context: LaunchContext, name: str, value: str) -> None:
         """Set it."""
-        context.environment[perform(self.name, context)] = perform(self.value, context)
+        context.environment[name] = value
 
 
-class UnsetEnv(Action):
+class UnsetEnv(NameAction):
     """Remove variable NAME."""
 
     TAG = "unset_env"
 
-    def __init__(
-        self, name: Value, location: Location | None = None, condition: Condition | None = None
-    ) -> None:
-        super().__init__(location, condition)
-        self.name = name
-
-    def execute(self, context: LaunchContext) -> None:
+    def apply(self, context: LaunchContext, name: str) -> None:
         """Remove it (no error when it was not set)."""
-        context.environment.pop(perform(self.name, context), None)
+        context.environment.pop(name, None)
 
 
-class AppendEnv(Action):
+class AppendEnv(NameValueAction):
     """Append (or prepend) VALUE to variable NAME with SEPARATOR; set it when unset."""
 
     TAG = "append_env"
@@ -65,16 +48,12 @@ class AppendEnv(Action):
         location: Location | None = None,
         condition: Condition | None = None,
     ) -> None:
-        super().__init__(location, condition)
-        self.name = name
-        self.value = value
+        super().__init__(name, value, location, condition)
         self.prepend = prepend
         self.separator = separator
 
-    def execute(self, context: LaunchContext) -> None:
+    def apply(self, context: LaunchContext, name: str, value: str) -> None:
         """Append or prepend."""
-        name = perform(self.name, context)
-        value = perform(self.value, context)
         sep = os.pathsep if self.separator is None else perform(self.separator, context)
         current = context.environment.get(name)
         if current:

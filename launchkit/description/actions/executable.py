@@ -12,6 +12,7 @@ from typing import TYPE_CHECKING
 
 from launchkit.description.actions.base import Action, typed_bool, typed_float, typed_int
 from launchkit.description.command_line import split_command
+from launchkit.description.events import EventHandler, ProcessExited, action_matcher
 from launchkit.description.process_spec import OUTPUT_MODES, ProcessSpec
 from launchkit.description.substitutions.base import Value, perform
 from launchkit.description.truth import condition_value
@@ -24,7 +25,7 @@ if TYPE_CHECKING:
 ON_EXIT = ("shutdown",)
 
 
-@dataclass(slots=True)  # slots: a large file has one per <executable> and <node>
+@dataclass
 class ProcessOptions:
     """The attributes ``<executable>`` and ``<node>`` share, unevaluated (None = not given)."""
 
@@ -180,10 +181,10 @@ def start(
     registered as a handler of its exits."""
     spec.origin = action
     if options.on_exit_actions:
-        from launchkit.description.events import EventHandler, ProcessExited, action_matcher
-
         handler = EventHandler(
-            matcher=action_matcher(ProcessExited, action), entities=options.on_exit_actions
+            matcher=action_matcher(ProcessExited, action),
+            entities=options.on_exit_actions,
+            description=f"on_exit of {spec.name}",
         )
         context.register_handler(handler)
     context.runner.start_process(spec)

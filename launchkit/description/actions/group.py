@@ -4,9 +4,9 @@ from __future__ import annotations
 
 import re
 from collections.abc import Sequence
+from dataclasses import dataclass
 from typing import TYPE_CHECKING
 
-from launchkit._record import Frozen
 from launchkit.description.actions.base import Action
 from launchkit.description.launch_context import Scope
 from launchkit.description.substitutions.base import Value, perform
@@ -20,16 +20,12 @@ if TYPE_CHECKING:
     from launchkit.description.launch_context import LaunchContext
 
 
-class Keep(Frozen):
+@dataclass(frozen=True)
+class Keep:
     """``<keep name value/>``: a configuration kept through a reset."""
 
-    __slots__ = ("name", "value")
     name: Value
     value: Value
-
-    def __init__(self, name: Value, value: Value) -> None:
-        object.__setattr__(self, "name", name)
-        object.__setattr__(self, "value", value)
 
 
 def _kept(keeps: Sequence[Keep], context: LaunchContext) -> dict[str, str]:

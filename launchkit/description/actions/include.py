@@ -3,10 +3,10 @@
 from __future__ import annotations
 
 from collections.abc import Sequence
+from dataclasses import dataclass
 from pathlib import Path
 from typing import TYPE_CHECKING
 
-from launchkit._record import Frozen
 from launchkit.description.actions.base import Action
 from launchkit.description.substitutions.base import Value, perform
 from launchkit.errors import LaunchFileError, LaunchkitError, Location, RuntimeLaunchError
@@ -17,16 +17,12 @@ if TYPE_CHECKING:
     from launchkit.description.launch_context import LaunchContext
 
 
-class IncludeArg(Frozen):
+@dataclass(frozen=True)
+class IncludeArg:
     """``<arg name value/>`` inside an include."""
 
-    __slots__ = ("name", "value")
     name: str
     value: Value
-
-    def __init__(self, name: str, value: Value) -> None:
-        object.__setattr__(self, "name", name)
-        object.__setattr__(self, "value", value)
 
 
 class Include(Action):

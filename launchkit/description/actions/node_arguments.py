@@ -22,6 +22,8 @@ import os
 from collections.abc import Sequence
 from typing import TYPE_CHECKING
 
+import yaml
+
 from launchkit.description.actions.parameters import (
     ParamEntry,
     ParamFile,
@@ -41,8 +43,6 @@ if TYPE_CHECKING:
 def global_parameter(name: str, text: str) -> str:
     """``name:=value`` for a SetParameter: launch_ros reads the value as YAML and writes it
     back with Python's ``str`` (``true`` -> ``True``); a list is written as a YAML list."""
-    import yaml  # lazily: most launches never need it
-
     value = typed_value(text, None, None)
     if isinstance(value, list):
         return f"{name}:={yaml.safe_dump(value, default_flow_style=True).strip()}"
@@ -52,8 +52,6 @@ def global_parameter(name: str, text: str) -> str:
 def parameter_rule(entry: ParamRule, context: LaunchContext) -> str:
     """``name:=value`` for a lone ``Parameter``: the value as ``yaml.dump`` writes it (with
     its document end marker, as launch_ros passes it)."""
-    import yaml  # lazily: most launches never need it
-
     value = evaluate_value(entry.param, context)
     return f"{perform(entry.param.name, context)}:={yaml.dump(value)}"
 
@@ -67,8 +65,6 @@ def ros_arguments(
 ) -> tuple[list[str], dict[str, str]]:
     """The items of the node's last ``--ros-args`` section, and the params files generated
     for it (path -> text, for ``--print``)."""
-    import yaml  # lazily: most launches never need it
-
     out: list[str] = []
     files: dict[str, str] = {}
     name = perform(node_name, context) if node_name is not None else None

@@ -7,9 +7,13 @@ from dataclasses import dataclass, field
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
+import yaml
+
 from launchkit.description.substitutions.base import Value, perform
+from launchkit.description.substitutions.grammar import parse_value
 from launchkit.errors import Location, RuntimeLaunchError
 from launchkit.packages import is_file
+from launchkit.safe_yaml import compose, read_text
 
 if TYPE_CHECKING:
     from launchkit.description.launch_context import LaunchContext
@@ -79,8 +83,6 @@ NodeParams = dict[str, Any] | Path
 
 def typed_value(text: str, kind: str | None, location: Location | None) -> Any:
     """``text`` converted as ROS does: YAML inference unless ``type`` says otherwise."""
-    import yaml  # lazily: most launches never need it
-
     try:
         if kind == "str":
             return text
@@ -114,8 +116,6 @@ def typed_value(text: str, kind: str | None, location: Location | None) -> Any:
 
 def evaluate_value(param: ParamValue, context: LaunchContext) -> Any:
     """The typed value of one ``<param>``."""
-    import yaml  # lazily: most launches never need it
-
     text = perform(param.value, context)
     if param.sep is not None or (param.type or "").startswith("list_of_"):
         item_type = (param.type or "").removeprefix("list_of_") or None
@@ -168,14 +168,10 @@ def params_file(entry: ParamFile, context: LaunchContext) -> Path:
         raise RuntimeLaunchError(
             f"parameter file '{path}' does not exist", entry.location, expected="a YAML file"
         )
-    from launchkit.safe_yaml import compose, read_text
-
     text = read_text(path, entry.location)  # a located error for bytes that are not UTF-8
     if not entry.allow_substs:
         compose(text, path)  # refused here, before anything starts, rather than by the node
         return path.resolve()
-    from launchkit.description.substitutions.grammar import parse_value
-
     text = perform(parse_value(text, Location(str(path))), context)
     scratch = context.write_scratch_file("params_", ".yaml", text)
     compose(text, path)  # errors name the user's file (lines as substituted)

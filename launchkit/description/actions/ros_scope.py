@@ -5,7 +5,7 @@ from __future__ import annotations
 
 from typing import TYPE_CHECKING
 
-from launchkit.description.actions.base import Action, typed_bool
+from launchkit.description.actions.base import Action, NameValueAction, typed_bool
 from launchkit.description.substitutions.base import Value, perform
 from launchkit.errors import Location
 
@@ -65,27 +65,14 @@ class PushRosNamespace(Action):
             context.configurations[NAMESPACE_CONFIGURATION] = pushed
 
 
-class SetParameter(Action):
+class SetParameter(NameValueAction):
     """A parameter given to every later node in scope (and read by ``$(param)``)."""
 
     TAG = "set_parameter"
 
-    def __init__(
-        self,
-        name: Value,
-        value: Value,
-        location: Location | None = None,
-        condition: Condition | None = None,
-    ) -> None:
-        super().__init__(location, condition)
-        self.name = name
-        self.value = value
-
-    def execute(self, context: LaunchContext) -> None:
+    def apply(self, context: LaunchContext, name: str, value: str) -> None:
         """Record it in the scope."""
-        context.scope.global_params.append(
-            (perform(self.name, context), perform(self.value, context))
-        )
+        context.scope.global_params.append((name, value))
 
 
 class SetParametersFromFile(Action):
@@ -107,25 +94,15 @@ class SetParametersFromFile(Action):
         context.scope.global_params.append(perform(self.filename, context))
 
 
-class SetRemap(Action):
-    """A remapping given to every later node in scope."""
+class SetRemap(NameValueAction):
+    """A remapping given to every later node in scope: ``name`` is what it maps from,
+    ``value`` what it maps to."""
 
     TAG = "set_remap"
 
-    def __init__(
-        self,
-        src: Value,
-        dst: Value,
-        location: Location | None = None,
-        condition: Condition | None = None,
-    ) -> None:
-        super().__init__(location, condition)
-        self.src = src
-        self.dst = dst
-
-    def execute(self, context: LaunchContext) -> None:
+    def apply(self, context: LaunchContext, name: str, value: str) -> None:
         """Record it in the scope."""
-        context.scope.remaps.append((perform(self.src, context), perform(self.dst, context)))
+        context.scope.remaps.append((name, value))
 
 
 class SetUseSimTime(Action):

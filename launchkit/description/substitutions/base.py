@@ -40,7 +40,7 @@ Value = tuple[Substitution, ...]
 class Text(Substitution):
     """Literal text."""
 
-    __slots__ = ("location", "text")  # a large file has one per value
+    __slots__ = ("location", "text")
 
     def __init__(self, text: str, location: Location | None = None) -> None:
         self.text = text
@@ -115,9 +115,6 @@ class Call(Substitution):
 
 def perform(value: Value, context: LaunchContext) -> str:
     """Perform every part of ``value`` and concatenate the results."""
-    if len(value) == 1:  # most values: one text or one substitution (a large file's path)
-        part = value[0]
-        return part.text if type(part) is Text else part.perform(context)
     return "".join([part.perform(context) for part in value])
 
 

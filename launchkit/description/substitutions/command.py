@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import os
+import re
 import selectors
 import shlex
 import signal
@@ -17,10 +18,16 @@ if TYPE_CHECKING:
 ON_STDERR = ("fail", "ignore", "warn", "capture")
 QUOTED_LINES = 4  # of a failing program's stderr: its last words, not a whole traceback
 
+#: A line that says what went wrong (``error: No such file ...``, ``XML parsing error: ...``,
+#: ``FileNotFoundError: ...``, ``[ERROR] ...``): a program may write warnings before it (xacro's
+#: deprecations) and context after it (xacro's "when processing file" chain).
+_ERROR_LINE = re.compile(r"(?i)(\b\w*(error|exception)\b\s*:|^\s*fatal\b|\[error\])")
+
 
 def last_words(stderr: str) -> tuple[str, list[str]]:
-    """How to show a program's stderr in an error: one line inline (``": oops"``), or the
-    last :data:`QUOTED_LINES` lines to quote under a headline that says how many there were."""
+    """How to show a program's stderr in an error: one line inline (``": oops"``), or lines to
+    quote under a headline that says which they are: the first line that names an error, when
+    the last :data:`QUOTED_LINES` lines do not hold it, then those last lines."""
     lines = [line.rstrip() for line in stderr.strip().splitlines() if line.strip()]
     if not lines:
         return "", []
@@ -28,7 +35,14 @@ def last_words(stderr: str) -> tuple[str, list[str]]:
         return f": {lines[0].strip()}", []
     if len(lines) <= QUOTED_LINES:
         return "; on stderr:", lines
-    return f"; the last {QUOTED_LINES} of its {len(lines)} lines on stderr:", lines[-QUOTED_LINES:]
+    tail = lines[-QUOTED_LINES:]
+    first = next((line for line in lines if _ERROR_LINE.search(line)), None)
+    if first is None or first in tail:
+        return f"; the last {QUOTED_LINES} of its {len(lines)} lines on stderr:", tail
+    return (
+        f"; its first error and the last {QUOTED_LINES} of its {len(lines)} lines on stderr:",
+        [first, "...", *tail],
+    )
 
 
 #: What a command may write (stdout and stderr together) before it is stopped as runaway.

@@ -3,7 +3,9 @@
 from __future__ import annotations
 
 import os
+import random
 import re
+import socket
 from typing import TYPE_CHECKING
 
 from launchkit.description.substitutions.base import Call
@@ -47,9 +49,6 @@ class Anon(Call):
         name = self.arg(0, context)
         known = context.anon_names.get(name)
         if known is None:
-            import random  # here: every launch imports this module ($(var)), few use $(anon)
-            import socket
-
             raw = f"{name}_{socket.gethostname()}_{os.getpid()}_{random.getrandbits(63)}"
             known = re.sub(r"[.\-:]", "_", raw)
             context.anon_names[name] = known

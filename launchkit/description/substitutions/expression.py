@@ -11,6 +11,7 @@ from __future__ import annotations
 from typing import TYPE_CHECKING
 
 from launchkit.description.substitutions.base import Call
+from launchkit.description.substitutions.sandbox import SandboxError, evaluate
 
 if TYPE_CHECKING:
     from launchkit.description.launch_context import LaunchContext
@@ -29,8 +30,6 @@ class Eval(Call):
         expression = self.arg(0, context)
         modules = [m.strip() for m in self.arg(1, context, "math").split(",") if m.strip()]
         # the sandbox's tables are built on import: only a launch that evaluates pays for them
-        from launchkit.description.substitutions.sandbox import SandboxError, evaluate
-
         try:
             return str(evaluate(expression, modules))
         except SandboxError as error:

@@ -24,8 +24,7 @@ MAX_DEPTH = 64
 
 
 #: The characters that end a run of literal text at the top, in an unquoted argument, in a
-#: quoted one: the parser jumps over everything else in one step (a large file's values are
-#: mostly literal text).
+#: quoted one: the parser jumps over everything else in one step (values are mostly text).
 _TOP_SPECIAL = re.compile(r"[\\$]")
 _ARGUMENT_SPECIAL = re.compile(r"[ )\\$'\"(]")
 _QUOTED_SPECIAL = {"'": re.compile(r"['\\$]"), '"': re.compile(r'["\\$]')}
@@ -71,24 +70,38 @@ class _Parser:
     # -- grammar -----------------------------------------------------------------------------
 
     def parse_top(self) -> Value:
+        return tuple(self.parse_parts(_TOP_SPECIAL, "", ""))
+
+    def parse_parts(self, special: re.Pattern[str], stops: str, name: str) -> list[Substitution]:
+        """Literal text, ``\\`` escapes, nested ``$(...)`` and (in an argument) quoted parts,
+        up to the text's end or a character of ``stops`` (not taken). ``special``: the
+        characters that need a look here; ``name``: the substitution an argument is of."""
         parts: list[Substitution] = []
         buffer: list[str] = []
         while True:
-            self.skip_literal(_TOP_SPECIAL, buffer)
-            if self.pos >= len(self.text):
-                break
+            self.skip_literal(special, buffer)
             char = self.peek()
+            if not char or char in stops:
+                break
             if char == "\\" and self.pos + 1 < len(self.text):
                 buffer.append(self.text[self.pos + 1])
                 self.pos += 2
             elif self.at_call():
                 _flush(buffer, parts)
                 parts.append(self.parse_call())
+            elif char in "'\"":  # only an argument stops at quotes (see _ARGUMENT_SPECIAL)
+                _flush(buffer, parts)
+                parts.extend(self.parse_quoted(char, name))
+            elif char == "(":
+                raise self.error(
+                    f"unescaped '(' in an argument of $({name} ...)",
+                    "a quoted argument or '\\(' for a literal parenthesis",
+                )
             else:
                 buffer.append(char)
                 self.pos += 1
         _flush(buffer, parts)
-        return tuple(parts)
+        return parts
 
     def parse_call(self) -> Substitution:
         self.depth += 1
@@ -143,62 +156,18 @@ class _Parser:
         return cls(args, where)
 
     def parse_argument(self, name: str) -> Value:
-        parts: list[Substitution] = []
-        buffer: list[str] = []
-        while True:
-            self.skip_literal(_ARGUMENT_SPECIAL, buffer)
-            char = self.peek()
-            if char in (" ", ")", ""):
-                break
-            if char == "\\" and self.pos + 1 < len(self.text):
-                buffer.append(self.text[self.pos + 1])
-                self.pos += 2
-            elif self.at_call():
-                _flush(buffer, parts)
-                parts.append(self.parse_call())
-            elif char in "'\"":
-                _flush(buffer, parts)
-                parts.extend(self.parse_quoted(char, name))
-            elif char == "(":
-                raise self.error(
-                    f"unescaped '(' in an argument of $({name} ...)",
-                    "a quoted argument or '\\(' for a literal parenthesis",
-                )
-            else:
-                buffer.append(char)
-                self.pos += 1
-        _flush(buffer, parts)
-        return tuple(parts)
+        return tuple(self.parse_parts(_ARGUMENT_SPECIAL, " )", name))
 
     def parse_quoted(self, quote: str, name: str) -> list[Substitution]:
         start = self.pos
         self.pos += 1
-        parts: list[Substitution] = []
-        buffer: list[str] = []
-        special = _QUOTED_SPECIAL[quote]
-        while True:
-            self.skip_literal(special, buffer)
-            char = self.peek()
-            if char == "":
-                raise self.error(
-                    f"unterminated {quote} quote in $({name} ...)", f"a closing {quote}", at=start
-                )
-            if char == quote:
-                self.pos += 1
-                break
-            if char == "\\" and self.pos + 1 < len(self.text):
-                buffer.append(self.text[self.pos + 1])
-                self.pos += 2
-            elif self.at_call():
-                _flush(buffer, parts)
-                parts.append(self.parse_call())
-            else:
-                buffer.append(char)
-                self.pos += 1
-        _flush(buffer, parts)
-        if not parts:
-            parts.append(Text(""))
-        return parts
+        parts = self.parse_parts(_QUOTED_SPECIAL[quote], quote, name)
+        if not self.peek():
+            raise self.error(
+                f"unterminated {quote} quote in $({name} ...)", f"a closing {quote}", at=start
+            )
+        self.pos += 1
+        return parts or [Text("")]
 
 
 def _flush(buffer: list[str], parts: list[Substitution]) -> None:

@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import shlex
 from typing import TYPE_CHECKING
 
 from launchkit.description.substitutions.base import Call
@@ -61,8 +62,6 @@ class ExecInPkg(Call):
             argv = context.packages.executable(self.arg(1, context), self.arg(0, context))
             if len(argv) == 1:
                 return argv[0]
-            import shlex  # only for an executable run by an interpreter
-
             return shlex.join(argv)
         except PackageNotFoundError as error:
             raise error.with_location(self.location) if self.location else error from None

@@ -9,7 +9,6 @@ stand-in modules installed, and its exception is reported with its file and line
 
 from __future__ import annotations
 
-import types
 from collections.abc import Callable, Sequence
 from typing import Any
 
@@ -36,10 +35,15 @@ from launchkit.description.events import (
 )
 from launchkit.description.launch_context import LaunchContext, Visitable
 from launchkit.description.substitutions.base import literal
-from launchkit.errors import LaunchFileError
-from launchkit.frontend.python.context_view import LaunchContextView
+from launchkit.errors import LaunchFileError, Location
 from launchkit.frontend.python.launch_api import flatten
-from launchkit.frontend.python.values import call_user, current_modules, here
+from launchkit.frontend.python.values import (
+    LaunchContextView,
+    call_user,
+    current_modules,
+    function_name,
+    here,
+)
 
 
 def describe_action(action: object) -> str:
@@ -71,26 +75,13 @@ class _Reaction(EventHandler):
         what: str,
         handle_once: bool = False,
     ) -> None:
-        self.callback: Callable[..., Any] | None = None
-        entities: list[Action] = []
         if callable(reaction) and not isinstance(reaction, Action):
-            self.callback = reaction
+            entities: list[Action] = [CallOnEvent(reaction, what, self.WITH_CONTEXT)]
         else:
             entities = flatten(reaction, what)
         super().__init__(matcher=matcher, entities=entities, handle_once=handle_once)
         self.what = what
         self.location = here()
-        self._modules: dict[str, types.ModuleType] = current_modules()
-
-    def handle(self, event: object, context: LaunchContext) -> Sequence[Visitable]:
-        """The actions, or what the function returns for ``event``."""
-        if self.callback is None:
-            return self.entities
-        args: tuple[Any, ...] = (event,)
-        if self.WITH_CONTEXT:
-            args = (event, LaunchContextView(context))
-        result = call_user(self.callback, self.what, self._modules, *args)
-        return flatten(result, f"{self.what} {getattr(self.callback, '__qualname__', '')}")
 
 
 class _OnAction(_Reaction):
@@ -172,6 +163,11 @@ class OnProcessIO(_Reaction):
         route.__qualname__ = "OnProcessIO"
         super().__init__(action_matcher(ProcessIO, target_action), route, "OnProcessIO")
         self.handle_once = handle_once
+        self.functions = [f for f in (on_stdout, on_stderr) if f is not None]
+
+    def children(self) -> Sequence[Visitable]:
+        """The calls of the launch file's functions (what ``--print`` shows of them)."""
+        return [CallOnEvent(function, "OnProcessIO", False) for function in self.functions]
 
     describe = _OnAction.describe
 
@@ -253,14 +249,50 @@ class OpaqueFunction(Action):
         self._modules = current_modules()
 
     def execute(self, context: LaunchContext) -> None:
-        """Call the function and run what it returns."""
+        """Call the function and run what it returns (``--print`` showing an event handler's
+        actions only says it would)."""
+        name = function_name(self.function)
+        if context.instead_of_calling is not None:
+            context.instead_of_calling(f"{name} (OpaqueFunction)", self.location)
+            return
         view = LaunchContextView(context)
         result = call_user(
             self.function, "OpaqueFunction", self._modules, view, *self.args, **self.kwargs
         )
-        name = getattr(self.function, "__qualname__", "function")
         for action in flatten(result, f"OpaqueFunction {name}()"):
             action.visit(context)
+
+
+class CallOnEvent(Action):
+    """A function of the launch file that reacts to an event (an event handler's, or an
+    ExecuteProcess's ``on_exit``): called with the event (and the context) when its handler
+    runs, then what it returns runs. ``--print`` and ``check`` only say they would call it
+    (ROS calls it only on the event)."""
+
+    def __init__(self, function: Callable[..., Any], what: str, with_context: bool = True):
+        super().__init__(here())
+        self.function = function
+        self.what = what
+        self.with_context = with_context
+        self._modules = current_modules()
+
+    def execute(self, context: LaunchContext) -> None:
+        """Call the function with the event being handled and run what it returns."""
+        name = function_name(self.function)
+        if context.instead_of_calling is not None:
+            context.instead_of_calling(name, where(self.function))
+            return
+        event = context.locals.get("event")
+        args = (event, LaunchContextView(context)) if self.with_context else (event,)
+        result = call_user(self.function, self.what, self._modules, *args)
+        for action in flatten(result, f"{self.what} {name}()"):
+            action.visit(context)
+
+
+def where(function: Callable[..., Any]) -> Location | None:
+    """Where ``function`` is defined."""
+    code = getattr(function, "__code__", None)
+    return None if code is None else Location(code.co_filename, code.co_firstlineno)
 
 
 def matches_action(target_action: Any) -> Callable[[Any], bool]:

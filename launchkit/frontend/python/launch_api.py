@@ -1,6 +1,6 @@
 """Stand-ins for the actions of ROS 2's ``launch`` package that launch files construct (its
-processes are in ``process_api.py``, its event system in ``event_api.py``, its conditions and
-substitutions in ``launch_substitutions.py``).
+processes are in ``process_api.py``, its event system in ``event_api.py``, its conditions in
+``conditions_api.py``, its substitutions in ``launch_substitutions.py``).
 
 Each action class *is* the matching launchkit action (a thin subclass whose constructor takes
 the ROS keyword arguments), so the loaded file needs no translation step afterwards.
@@ -12,7 +12,7 @@ from collections.abc import Iterable, Mapping
 from typing import Any
 
 from launchkit.description import actions as lk
-from launchkit.description.actions.base import Action
+from launchkit.description.actions.base import Action, NameAction
 from launchkit.description.conditions import Condition
 from launchkit.description.launch_context import LaunchContext
 from launchkit.errors import LaunchFileError, PackageNotFoundError
@@ -85,18 +85,15 @@ class SetLaunchConfiguration(lk.SetConfiguration):
         super().__init__(to_value(name), to_value(value), here(), condition)
 
 
-class UnsetLaunchConfiguration(Action):
+class UnsetLaunchConfiguration(NameAction):
     """``launch.actions.UnsetLaunchConfiguration``."""
 
     def __init__(self, name: Any, *, condition: Condition | None = None) -> None:
-        super().__init__(here(), condition)
-        self.name = to_value(name)
+        super().__init__(to_value(name), here(), condition)
 
-    def execute(self, context: LaunchContext) -> None:
+    def apply(self, context: LaunchContext, name: str) -> None:
         """Remove the configuration (no error when it is not set)."""
-        from launchkit.description.substitutions.base import perform
-
-        context.configurations.pop(perform(self.name, context), None)
+        context.configurations.pop(name, None)
 
 
 class LaunchDescriptionSource:

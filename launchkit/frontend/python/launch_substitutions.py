@@ -1,7 +1,8 @@
-"""Stand-ins for the conditions and substitutions of ROS 2's ``launch`` package.
+"""Stand-ins for the substitutions of ROS 2's ``launch`` package (its conditions are in
+``conditions_api.py``).
 
-Each substitution class wraps the matching launchkit substitution; each condition is a launchkit
-:class:`Condition`. Locations are the lines of the launch file that built them.
+Each substitution class wraps the matching launchkit substitution. Locations are the lines of
+the launch file that built them.
 """
 
 from __future__ import annotations
@@ -10,7 +11,6 @@ import os
 from collections.abc import Iterable
 from typing import Any
 
-from launchkit.description.conditions import Condition
 from launchkit.description.launch_context import LaunchContext
 from launchkit.description.substitutions import (
     AllOf,
@@ -38,64 +38,9 @@ from launchkit.description.substitutions.local import Local
 from launchkit.errors import LaunchFileError, Location
 from launchkit.frontend.python.values import (
     SubstitutionLike,
-    call_user,
-    current_modules,
     here,
-    optional_value,
     to_value,
 )
-
-# -- conditions --------------------------------------------------------------------------------
-
-
-def _condition(value: Any, negate: bool) -> Condition:
-    return Condition(to_value(value), negate, here())
-
-
-def IfCondition(predicate_expression: Any) -> Condition:
-    """``launch.conditions.IfCondition``."""
-    return _condition(predicate_expression, False)
-
-
-def UnlessCondition(predicate_expression: Any) -> Condition:
-    """``launch.conditions.UnlessCondition``."""
-    return _condition(predicate_expression, True)
-
-
-class _ConfigurationEquals(Substitution):
-    """``true`` when configuration ``name`` is exactly ``expected`` (text), or is unset and
-    ``expected`` is None: ROS's LaunchConfigurationEquals test."""
-
-    def __init__(self, name: str, expected: Value | None, negate: bool) -> None:
-        self.name = name
-        self.expected = expected
-        self.negate = negate
-        self.location = here()
-
-    def perform(self, context: LaunchContext) -> str:
-        """``true`` or ``false``."""
-        expected = None if self.expected is None else perform(self.expected, context)
-        equal = context.configurations.get(self.name) == expected
-        return "true" if equal != self.negate else "false"
-
-    def describe(self) -> str:
-        """How it was written."""
-        what = "LaunchConfigurationNotEquals" if self.negate else "LaunchConfigurationEquals"
-        expected = "None" if self.expected is None else describe(self.expected)
-        return f"{what}({self.name!r}, {expected!r})"
-
-
-def LaunchConfigurationEquals(launch_configuration_name: str, expected_value: Any) -> Condition:
-    """``launch.conditions.LaunchConfigurationEquals`` (exact text; None: unset)."""
-    test = _ConfigurationEquals(launch_configuration_name, optional_value(expected_value), False)
-    return Condition((test,), False, here())
-
-
-def LaunchConfigurationNotEquals(launch_configuration_name: str, expected_value: Any) -> Condition:
-    """``launch.conditions.LaunchConfigurationNotEquals``."""
-    test = _ConfigurationEquals(launch_configuration_name, optional_value(expected_value), True)
-    return Condition((test,), False, here())
-
 
 # -- substitutions -----------------------------------------------------------------------------
 
@@ -162,39 +107,6 @@ class IfElseSubstitution(SubstitutionLike):
 
 class SubstitutionFailure(RuntimeError):
     """``launch.substitutions.SubstitutionFailure``: raise it from a function to fail."""
-
-
-class Substitution_(SubstitutionLike):
-    """``launch.Substitution``: base of a launch file's own substitution classes, which
-    define ``perform(self, context)`` (and ``describe``)."""
-
-    def __init__(self) -> None:
-        super().__init__(_UserSubstitution(self, here()))
-
-    def perform(self, context: Any) -> str:
-        """Overridden by the subclass."""
-        raise NotImplementedError(f"{type(self).__name__} does not define perform()")
-
-
-class _UserSubstitution(Substitution):
-    """Calls a launch file's own substitution's ``perform`` with the context view."""
-
-    def __init__(self, owner: Substitution_, location: Location | None) -> None:
-        self.owner = owner
-        self.location = location
-        self._modules = current_modules()
-
-    def perform(self, context: LaunchContext) -> str:
-        """What the user's ``perform`` returns."""
-        from launchkit.frontend.python.context_view import LaunchContextView
-
-        what = f"{type(self.owner).__name__}.perform"
-        result = call_user(self.owner.perform, what, self._modules, LaunchContextView(context))
-        return str(result)
-
-    def describe(self) -> str:
-        """The class name."""
-        return f"{type(self.owner).__name__}()"
 
 
 class PythonExpression(SubstitutionLike):

@@ -10,11 +10,11 @@ launchkit refuses on purpose say why.
 from __future__ import annotations
 
 import types
+from collections.abc import Iterable
 from pathlib import Path
 from typing import Any
 
 from launchkit.description.actions.base import Action
-from launchkit.description.conditions import Condition
 from launchkit.description.events import (
     Event,
     ExecutionComplete,
@@ -25,8 +25,9 @@ from launchkit.description.events import (
     ShutdownProcess,
     SignalProcess,
 )
-from launchkit.errors import LaunchFileError, PackageNotFoundError
+from launchkit.errors import LaunchFileError, PackageNotFoundError, RuntimeLaunchError
 from launchkit.frontend.python import composition_api as C
+from launchkit.frontend.python import conditions_api as K
 from launchkit.frontend.python import event_api as E
 from launchkit.frontend.python import launch_api as L
 from launchkit.frontend.python import launch_substitutions as S
@@ -34,9 +35,10 @@ from launchkit.frontend.python import lifecycle_api as Y
 from launchkit.frontend.python import process_api as P
 from launchkit.frontend.python import ros_api as R
 from launchkit.frontend.python import ros_params as RP
-from launchkit.frontend.python.context_view import LaunchContextView, perform_substitutions
+from launchkit.frontend.python import type_utils_api as T
+from launchkit.frontend.python import utilities_api as U
 from launchkit.frontend.python.description_sources import source_modules
-from launchkit.frontend.python.values import here, unsupported
+from launchkit.frontend.python.values import LaunchContextView, SubstitutionLike, here, unsupported
 from launchkit.packages import PackageIndex
 
 
@@ -62,6 +64,29 @@ def _refusing(module: types.ModuleType) -> types.ModuleType:
 
     module.__getattr__ = missing  # type: ignore[method-assign]
     return module
+
+
+#: ``launch.SomeSubstitutionsType_types_tuple``: what ``ensure_argument_type`` accepts as
+#: substitutions.
+SOME_SUBSTITUTIONS = (str, SubstitutionLike, Iterable)
+#: The functions of ``launch.utilities.type_utils``.
+_TYPE_UTILS = (
+    "AllowedTypesTuple",
+    "ListTypesTuple",
+    "ScalarTypesTuple",
+    "coerce_list",
+    "coerce_to_type",
+    "extract_type",
+    "get_typed_value",
+    "is_instance_of",
+    "is_instance_of_valid_type",
+    "is_normalized_substitution",
+    "is_substitution",
+    "is_typing_list",
+    "is_valid_scalar_type",
+    "normalize_typed_substitution",
+    "perform_typed_substitution",
+)
 
 
 def _launch_modules() -> list[types.ModuleType]:
@@ -119,11 +144,12 @@ def _launch_modules() -> list[types.ModuleType]:
     )
     conditions = _module(
         "launch.conditions",
-        IfCondition=S.IfCondition,
-        UnlessCondition=S.UnlessCondition,
-        LaunchConfigurationEquals=S.LaunchConfigurationEquals,
-        LaunchConfigurationNotEquals=S.LaunchConfigurationNotEquals,
-        InvalidConditionExpressionError=LaunchFileError,
+        IfCondition=K.IfCondition,
+        UnlessCondition=K.UnlessCondition,
+        LaunchConfigurationEquals=K.LaunchConfigurationEquals,
+        LaunchConfigurationNotEquals=K.LaunchConfigurationNotEquals,
+        InvalidConditionExpressionError=RuntimeLaunchError,
+        evaluate_condition_expression=K.evaluate_condition_expression,
     )
     frontend_sources = {n: _refusing(m) for n, m in source_modules().items()}
     sources = frontend_sources["launch.launch_description_sources"]
@@ -155,15 +181,30 @@ def _launch_modules() -> list[types.ModuleType]:
         process=process_events,
     )
     descriptions = _module("launch.descriptions", Executable=P.Executable)
+    type_utils = _module(
+        "launch.utilities.type_utils",
+        **{name: getattr(T, name) for name in _TYPE_UTILS},
+    )
     utilities = _module(
         "launch.utilities",
-        perform_substitutions=perform_substitutions,
-        normalize_to_list_of_substitutions=lambda subs: subs,
+        ensure_argument_type=U.ensure_argument_type,
+        is_a=U.is_a,
+        is_a_subclass=U.is_a_subclass,
+        isclassinstance=U.isclassinstance,
+        normalize_to_list_of_entities=U.normalize_to_list_of_entities,
+        normalize_to_list_of_substitutions=U.normalize_to_list_of_substitutions,
+        perform_substitutions=U.perform_substitutions,
+        type_utils=type_utils,
+    )
+    some_substitutions_type = _module(
+        "launch.some_substitutions_type",
+        SomeSubstitutionsType=Any,
+        SomeSubstitutionsType_types_tuple=SOME_SUBSTITUTIONS,
     )
     launch = _module(
         "launch",
         Action=Action,
-        Condition=Condition,
+        Condition=K.Condition,
         Event=Event,
         EventHandler=E.GenericEventHandler,
         InvalidLaunchFileError=LaunchFileError,
@@ -172,14 +213,18 @@ def _launch_modules() -> list[types.ModuleType]:
         LaunchDescriptionEntity=Action,
         LaunchDescriptionSource=L.LaunchDescriptionSource,
         LaunchService=unsupported("LaunchService", "launchkit run is the launch service"),
+        SomeEntitiesType=Any,
+        SomeEntitiesType_types_tuple=(Action, Iterable),
         SomeSubstitutionsType=Any,
-        Substitution=S.Substitution_,
+        SomeSubstitutionsType_types_tuple=SOME_SUBSTITUTIONS,
+        Substitution=SubstitutionLike,
         actions=actions,
         conditions=conditions,
         descriptions=descriptions,
         event_handlers=handlers,
         events=events,
         launch_description_sources=sources,
+        some_substitutions_type=some_substitutions_type,
         substitutions=substitutions,
         utilities=utilities,
     )
@@ -194,6 +239,8 @@ def _launch_modules() -> list[types.ModuleType]:
         process_events,
         descriptions,
         utilities,
+        type_utils,
+        some_substitutions_type,
     ]
 
 

@@ -18,6 +18,7 @@ from launchkit.description.launch_context import LaunchContext
 from launchkit.description.process_spec import ProcessSpec
 from launchkit.description.substitutions.base import Value, perform
 from launchkit.errors import LaunchFileError
+from launchkit.frontend.python.event_api import CallOnEvent
 from launchkit.frontend.python.values import argv_text, here, optional_value, to_value
 
 
@@ -40,7 +41,8 @@ def _actions(on_exit: Any) -> list[Action]:
             raise LaunchFileError(
                 f"on_exit holds a {type(item).__name__}",
                 here(),
-                expected="launch actions, e.g. on_exit=[LogInfo(msg='...'), Shutdown()]",
+                expected="launch actions, e.g. on_exit=[LogInfo(msg='...'), Shutdown()], or a "
+                "function of the event and the context",
             )
     return items
 
@@ -68,13 +70,16 @@ def process_options(
 
     ``on_exit=Shutdown()`` (alone or in a list) is launchkit's ``on_exit="shutdown"``: the
     launch's exit status tells the process's failure; any other actions run each time the
-    process exits, as an OnProcessExit handler would. ``env=`` is the whole environment
+    process exits, as an OnProcessExit handler would, and so does a function, called with the
+    ProcessExited event and the context (what it returns runs). ``env=`` is the whole environment
     (plus ``additional_env``), as in ROS."""
     del log_cmd, cached_output  # accepted for compatibility; launchkit always logs the command
     exit_value: Value | None = None
     exit_actions: list[Action] = []
     if isinstance(on_exit, str):
         exit_value = to_value(on_exit)
+    elif callable(on_exit) and not isinstance(on_exit, Action):  # f(event, context), as ROS
+        exit_actions.append(CallOnEvent(on_exit, "on_exit"))
     elif on_exit is not None:
         for action in _actions(on_exit):
             if isinstance(action, lk.Shutdown) and action.condition is None:

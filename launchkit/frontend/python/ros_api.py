@@ -7,6 +7,8 @@ import os
 from collections.abc import Iterable
 from typing import Any
 
+import yaml
+
 from launchkit.description import actions as lk
 from launchkit.description.actions.base import Action
 from launchkit.description.actions.parameters import ParamDict, ParamEntry
@@ -15,6 +17,7 @@ from launchkit.description.launch_context import LaunchContext
 from launchkit.description.substitutions import ExecInPkg, FindPkgPrefix, FindPkgShare, Param
 from launchkit.description.substitutions.base import perform
 from launchkit.errors import LaunchFileError
+from launchkit.frontend.python.launch_api import find_package
 from launchkit.frontend.python.process_api import process_options, words_of
 from launchkit.frontend.python.ros_params import parameter_entries
 from launchkit.frontend.python.values import (
@@ -35,8 +38,9 @@ class FindPackage(SubstitutionLike):
         super().__init__(self.KIND([to_value(package)], here()))
 
     def find(self, package_name: str) -> str:
-        """The directory for ``package_name`` (as the substitution would give it)."""
-        found = PackageIndex().find(package_name)
+        """The directory for ``package_name`` (as the substitution would give it); an unknown
+        package is an error at the launch file's line."""
+        found = find_package(PackageIndex(), package_name)
         return str(found.share if self.KIND is FindPkgShare else found.prefix)
 
 
@@ -147,8 +151,6 @@ class SetParameter(lk.SetParameter):
             isinstance(value, list | tuple)
             and all(isinstance(v, bool | int | float) for v in value)
         ):
-            import yaml
-
             value = (
                 yaml.safe_dump(
                     list(value) if isinstance(value, tuple) else value, default_flow_style=True

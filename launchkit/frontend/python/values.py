@@ -1,7 +1,8 @@
 """Turning what Python launch files pass around (str, substitutions, lists of both) into
 launchkit values, finding the line of the launch file that built an action, and running the
-file's own functions later (OpaqueFunction, event handler callbacks) with the stand-in modules
-installed again."""
+file's own functions later (OpaqueFunction, event handler callbacks, its own substitution
+classes) with the stand-in modules installed again and the ``context`` they receive
+(:class:`LaunchContextView`)."""
 
 from __future__ import annotations
 
@@ -12,6 +13,7 @@ from contextlib import contextmanager
 from pathlib import Path
 from typing import Any, TypeVar
 
+from launchkit.description.launch_context import LaunchContext
 from launchkit.description.substitutions.base import Substitution, Text, Value
 from launchkit.errors import LaunchFileError, LaunchkitError, Location
 
@@ -25,24 +27,68 @@ T = TypeVar("T")
 
 
 class SubstitutionLike:
-    """Base of the stand-in substitution classes: each wraps one launchkit substitution."""
+    """``launch.Substitution``: the base of every stand-in substitution class (each wraps one
+    launchkit substitution, its ``inner``) and of a launch file's own substitution classes,
+    which define ``perform(self, context)`` and call ``super().__init__()`` (or not: ROS's
+    base has no state), as nav2_common's ``RewrittenYaml`` does."""
 
-    def __init__(self, inner: Substitution) -> None:
-        self.inner = inner
+    _inner: Substitution | None = None
+
+    def __init__(self, inner: Substitution | None = None) -> None:
+        self._inner = inner
+
+    @property
+    def inner(self) -> Substitution:
+        """The launchkit substitution this one performs as (a launch file's own class: one
+        that calls its ``perform`` with the context launch files see)."""
+        if self._inner is None:
+            self._inner = LaunchFileSubstitution(self, here())
+        return self._inner
 
     def perform(self, context: Any) -> str:
         """The text in ``context`` (a user function's context, or launchkit's own)."""
-        return self.inner.perform(getattr(context, "real", context))
+        if self._inner is None or isinstance(self._inner, LaunchFileSubstitution):
+            # a launch file's own class that does not define perform (ROS's words)
+            raise NotImplementedError("perform() not implemented for Substitution base class.")
+        return self._inner.perform(getattr(context, "real", context))
 
     def describe(self) -> str:
         """How it was written."""
-        return self.inner.describe()
+        if self._inner is None or isinstance(self._inner, LaunchFileSubstitution):
+            return repr(self)  # ROS's default for a class that does not say
+        return self._inner.describe()
 
     def __add__(self, other: object) -> list[object]:
         return [self, other]
 
     def __radd__(self, other: object) -> list[object]:
         return [other, self]
+
+
+class LaunchFileSubstitution(Substitution):
+    """A launch file's own ``launch.Substitution`` subclass as a launchkit substitution: its
+    ``perform`` called with the context launch files see, the stand-in modules installed."""
+
+    def __init__(self, owner: SubstitutionLike, location: Location | None) -> None:
+        self.owner = owner
+        self.location = location
+        self._modules = current_modules()
+
+    def perform(self, context: LaunchContext) -> str:
+        """What the class's ``perform`` returns (``--print`` showing an event handler's
+        actions does not call it: ROS would only on the event)."""
+        if context.instead_of_calling is not None:
+            return f"<{type(self.owner).__name__}>"
+        view = LaunchContextView(context)
+        result = call_user(self.owner.perform, "substitution", self._modules, view)
+        return str(result)
+
+    def describe(self) -> str:
+        """What the class's ``describe`` says, else its name."""
+        if type(self.owner).describe is SubstitutionLike.describe:
+            return f"{type(self.owner).__name__}()"
+        text = call_user(self.owner.describe, "substitution", self._modules)
+        return str(text) or f"{type(self.owner).__name__}()"
 
 
 def to_value(item: Any) -> Value:
@@ -140,11 +186,18 @@ def call_user(
     except LaunchkitError:
         raise
     except Exception as error:
-        name = getattr(function, "__qualname__", None) or repr(function)
+        name = function_name(function)
         raise LaunchFileError(
             f"{what} {name}() raised {type(error).__name__}: {error}",
             error_location(error, function),
         ) from None
+
+
+def function_name(function: Callable[..., Any]) -> str:
+    """A function's name as written (``<lambda>``, ``Class.method``, not the functions it is
+    defined in)."""
+    name = str(getattr(function, "__qualname__", None) or type(function).__name__)
+    return name.rpartition("<locals>.")[2]
 
 
 def error_location(error: BaseException, function: object = None) -> Location | None:
@@ -185,3 +238,83 @@ def argv_text(words: list[Value]) -> Value:
             parts.append(Text(" "))
         parts.extend(word)
     return tuple(parts)
+
+
+class LaunchContextView:
+    """ROS's LaunchContext API for user code: configurations, environment, locals, performing
+    substitutions, registering handlers and emitting events."""
+
+    def __init__(self, context: LaunchContext) -> None:
+        self.real = context
+
+    @property
+    def launch_configurations(self) -> dict[str, str]:
+        """The launch configurations of the current scope (a live dict)."""
+        return self.real.configurations
+
+    @property
+    def environment(self) -> dict[str, str]:
+        """The environment processes started now inherit (a live dict)."""
+        return self.real.environment
+
+    def get_locals_as_dict(self) -> dict[str, Any]:
+        """The locals: ``event`` in a handler, the current launch file's path and folder."""
+        values = dict(self.real.locals)
+        current = self.real.current_file
+        if current is not None:
+            values.setdefault("current_launch_file_path", str(current))
+            values.setdefault("current_launch_file_directory", str(current.parent))
+        return values
+
+    @property
+    def locals(self) -> types.SimpleNamespace:
+        """The locals as attributes (``context.locals.event``)."""
+        return types.SimpleNamespace(**self.get_locals_as_dict())
+
+    def extend_locals(self, new_locals: dict[str, Any]) -> None:
+        """Add locals (for the rest of the current handler or function)."""
+        self.real.locals.update(new_locals)
+
+    @property
+    def is_shutdown(self) -> bool:
+        """Whether the launch is shutting down."""
+        return self.real.is_shutdown
+
+    def perform_substitution(self, substitution: Any) -> str:
+        """The text of a substitution (or of a list of them) now."""
+        from launchkit.description.substitutions.base import perform
+
+        return perform(to_value(substitution), self.real)
+
+    def register_event_handler(self, event_handler: Any, append: bool = False) -> None:
+        """Register a handler (newest first unless ``append``)."""
+        self.real.register_handler(event_handler)
+        if append:
+            self.real.handlers.remove(event_handler)
+            self.real.handlers.append(event_handler)
+
+    def unregister_event_handler(self, event_handler: Any) -> None:
+        """Unregister a handler."""
+        if event_handler in self.real.handlers:
+            self.real.handlers.remove(event_handler)
+
+    def emit_event_sync(self, event: Any) -> None:
+        """Emit an event, as ``EmitEvent(event=...)`` would."""
+        from launchkit.description.actions.event_actions import EmitEvent
+
+        EmitEvent(event, here()).execute(self.real)
+
+    emit_event = emit_event_sync
+
+    def __getattr__(self, name: str) -> Any:
+        raise LaunchFileError(
+            f"LaunchContext.{name} is not provided by launchkit",
+            here(),
+            expected="launch_configurations, environment, locals, perform_substitution, "
+            "register_event_handler, emit_event",
+        )
+
+
+def context_view(context: Any) -> LaunchContextView:
+    """``context`` as launch files see it (a view passes through unchanged)."""
+    return context if isinstance(context, LaunchContextView) else LaunchContextView(context)

@@ -13,7 +13,7 @@ from launchkit.description.actions.composition import (
 )
 from launchkit.frontend.action_parser import parse_condition
 from launchkit.frontend.tags.launch import leaf, only_children
-from launchkit.frontend.tags.ros import parse_param
+from launchkit.frontend.tags.ros import parse_node, parse_param
 
 if TYPE_CHECKING:
     from launchkit.description.actions.base import Action
@@ -50,8 +50,6 @@ def parse_composable_node(entity: Entity) -> ComposableNode:
 def parse_node_container(entity: Entity, parser: ActionParser) -> Action:
     """``<node_container pkg exec name namespace ...>``: a ``<node>`` whose children are
     ``<composable_node>``s (besides ``<param>``, ``<remap>``, ``<env>``)."""
-    from launchkit.frontend.tags.ros import parse_node
-
     nodes = [c for c in entity.children() if c.tag == "composable_node"]
     only_children(entity, ("param", "remap", "env", "composable_node"))
     container = parse_node(entity, parser, skip=("composable_node",))

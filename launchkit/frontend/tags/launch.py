@@ -23,6 +23,7 @@ from launchkit.description.actions import (
     Timer,
     UnsetEnv,
 )
+from launchkit.description.actions.base import NameValueAction
 from launchkit.description.actions.log import LEVELS
 from launchkit.description.process_spec import OUTPUT_MODES
 from launchkit.description.substitutions.base import Text
@@ -72,10 +73,18 @@ def parse_arg(entity: Entity, parser: ActionParser) -> Action:
     )
 
 
-def parse_let(entity: Entity, parser: ActionParser) -> Action:
-    """``<let name value>``."""
-    leaf(entity)
-    return SetConfiguration(entity.required("name"), entity.required("value"))
+def name_value_parser(
+    action: type[NameValueAction], name: str = "name", value: str = "value"
+) -> TagParser:
+    """The parser of a tag that is a name and a value and nothing else: ``<let name value>``,
+    ``<set_env name value>``, ``<set_remap from to>`` (``name`` and ``value``: what the tag
+    calls them)."""
+
+    def parse(entity: Entity, parser: ActionParser) -> Action:
+        leaf(entity)
+        return action(entity.required(name), entity.required(value))
+
+    return parse
 
 
 def parse_keeps(entity: Entity, children: list[Entity]) -> list[Keep]:
@@ -137,37 +146,20 @@ _PROCESS_ATTRIBUTES: tuple[tuple[str, str, str | tuple[str, ...] | None, bool], 
     ("on_exit", "on_exit", ("shutdown",), True),
 )
 
-#: Each of those attributes: its place in the table first, then the table's entry.
-_PROCESS_ORDER = {spec[0]: (index, *spec) for index, spec in enumerate(_PROCESS_ATTRIBUTES)}
 
-
-#: An entry of _PROCESS_ORDER.
-_Spec = tuple[int, str, str, str | tuple[str, ...] | None, bool]
-#: The process attributes among an element's attributes (by the names it has, in the order
-#: written), in the table's order: a large file's elements mostly have the same names.
-_GIVEN: dict[tuple[str, ...], list[_Spec]] = {}
-
-
-def _given(names: tuple[str, ...]) -> list[_Spec]:
-    given = _GIVEN.get(names)
-    if given is None:
-        given = sorted(spec for name in names if (spec := _PROCESS_ORDER.get(name)) is not None)
-        if len(_GIVEN) < 256:  # a bounded table: any other set of names is sorted each time
-            _GIVEN[names] = given
-    return given
-
-
-def parse_process_options(entity: Entity, children: list[Entity] | None = None) -> ProcessOptions:
-    """The attributes and ``<env>`` children ``<executable>`` and ``<node>`` share
-    (``children``: the entity's children, when the caller has them already)."""
-    options = ProcessOptions()  # no keyword: a call with one costs half as much again
-    env = options.env
-    for child in entity.children() if children is None else children:
+def parse_process_options(entity: Entity) -> ProcessOptions:
+    """The attributes and ``<env>`` children ``<executable>`` and ``<node>`` share."""
+    options = ProcessOptions()
+    for child in entity.children():
         if child.tag == "env":
-            env.append((child.required("name"), child.required("value")))
+            options.env.append((child.required("name"), child.required("value")))
             leaf(child).assert_fully_read()
-    # most are absent: only the given ones are read (large files), in the table's order
-    for _, attribute, name, how, typed in _given(tuple(entity.attribute_names())):
+    # only the attributes given are read (an unknown one's error lists those), in the table's
+    # order (the first bad one in it is reported, however they are written)
+    given = set(entity.attribute_names())
+    for attribute, name, how, typed in _PROCESS_ATTRIBUTES:
+        if attribute not in given:
+            continue
         if how is None:
             value = entity.value(attribute)
         elif isinstance(how, tuple):
@@ -180,9 +172,9 @@ def parse_process_options(entity: Entity, children: list[Entity] | None = None) 
 
 def parse_executable(entity: Entity, parser: ActionParser) -> Action:
     """``<executable cmd ...>`` with ``<env>`` children."""
-    children = only_children(entity, ("env",))
+    only_children(entity, ("env",))
     cmd = entity.required("cmd", 'cmd="program args..."')
-    return ExecuteProcess(cmd, parse_process_options(entity, children))
+    return ExecuteProcess(cmd, parse_process_options(entity))
 
 
 def parse_timer(entity: Entity, parser: ActionParser) -> Action:
@@ -192,12 +184,6 @@ def parse_timer(entity: Entity, parser: ActionParser) -> Action:
         raise entity.error("<timer> is missing attribute 'period'", expected='period="SECONDS"')
     cancel = entity.static_bool("cancel_on_shutdown", True)
     return Timer(period, parser.parse_actions(entity), cancel)
-
-
-def parse_set_env(entity: Entity, parser: ActionParser) -> Action:
-    """``<set_env name value>``."""
-    leaf(entity)
-    return SetEnv(entity.required("name"), entity.required("value"))
 
 
 def parse_unset_env(entity: Entity, parser: ActionParser) -> Action:
@@ -243,13 +229,13 @@ def parse_shutdown(entity: Entity, parser: ActionParser) -> Action:
 #: Tag name -> parser: the launch tags.
 TAGS: dict[str, TagParser] = {
     "arg": parse_arg,
-    "let": parse_let,
+    "let": name_value_parser(SetConfiguration),
     "group": parse_group,
     "reset": parse_reset,
     "include": parse_include,
     "executable": parse_executable,
     "timer": parse_timer,
-    "set_env": parse_set_env,
+    "set_env": name_value_parser(SetEnv),
     "unset_env": parse_unset_env,
     "append_env": parse_append_env,
     "reset_env": parse_reset_env,

@@ -18,7 +18,12 @@ from launchkit.description.actions import (
 )
 from launchkit.description.actions.composition import ComposableNodeContainer
 from launchkit.description.actions.parameters import PARAM_TYPES, ParamEntry
-from launchkit.frontend.tags.launch import leaf, only_children, parse_process_options
+from launchkit.frontend.tags.launch import (
+    leaf,
+    name_value_parser,
+    only_children,
+    parse_process_options,
+)
 
 if TYPE_CHECKING:
     from launchkit.description.actions.base import Action
@@ -95,7 +100,7 @@ def parse_node(entity: Entity, parser: ActionParser, skip: tuple[str, ...] = ())
             remaps.append(Remap(child.required("from"), child.required("to")))
             leaf(child).assert_fully_read()
     node_name = entity.value("name")
-    options = parse_process_options(entity, children)
+    options = parse_process_options(entity)
     options.name = None  # `name` is the ROS node name here, not the process label
     kind = ComposableNodeContainer if skip else ExecuteNode
     return kind(
@@ -118,22 +123,10 @@ def parse_push_ros_namespace(entity: Entity, parser: ActionParser) -> Action:
     return PushRosNamespace(entity.required("namespace"))
 
 
-def parse_set_parameter(entity: Entity, parser: ActionParser) -> Action:
-    """``<set_parameter name value>``."""
-    leaf(entity)
-    return SetParameter(entity.required("name"), entity.required("value"))
-
-
 def parse_set_parameters_from_file(entity: Entity, parser: ActionParser) -> Action:
     """``<set_parameters_from_file filename>``."""
     leaf(entity)
     return SetParametersFromFile(entity.required("filename"))
-
-
-def parse_set_remap(entity: Entity, parser: ActionParser) -> Action:
-    """``<set_remap from to>``."""
-    leaf(entity)
-    return SetRemap(entity.required("from"), entity.required("to"))
 
 
 def parse_set_use_sim_time(entity: Entity, parser: ActionParser) -> Action:
@@ -152,9 +145,9 @@ TAGS: dict[str, TagParser] = {
     "node": parse_node,
     "push_ros_namespace": parse_push_ros_namespace,
     "push-ros-namespace": parse_push_ros_namespace,
-    "set_parameter": parse_set_parameter,
+    "set_parameter": name_value_parser(SetParameter),
     "set_parameters_from_file": parse_set_parameters_from_file,
-    "set_remap": parse_set_remap,
+    "set_remap": name_value_parser(SetRemap, "from", "to"),
     "set_use_sim_time": parse_set_use_sim_time,
 }
 

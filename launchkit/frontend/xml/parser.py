@@ -1,27 +1,22 @@
-"""Parse XML launch files into :class:`LaunchDescription`s (both readers keep line numbers): a
-small plain file with expat (:mod:`launchkit.frontend.xml.expat_tree`: no lxml import for the
-common case), any other with lxml, as a stream (:mod:`launchkit.frontend.xml.stream`: a large
-file is never held whole)."""
+"""Parse XML launch files into :class:`LaunchDescription`\\ s: lxml reads the whole file and
+keeps each element's line (the column is found in the text, see ``entity.py``)."""
 
 from __future__ import annotations
 
-import functools
+import re
 import stat
-from collections.abc import Callable, Iterable
 from pathlib import Path
-from typing import TYPE_CHECKING
+
+from lxml import etree
 
 from launchkit.description.launch_description import LaunchDescription
 from launchkit.errors import LaunchFileError, Location
 from launchkit.frontend.action_parser import ActionParser
-from launchkit.frontend.xml.entity import SourceFile, XmlEntity, read_root
-from launchkit.frontend.xml.expat_tree import MAX_PLAIN_SIZE, read_plain
-
-if TYPE_CHECKING:
-    from launchkit.frontend.xml.entity import AnyElement
+from launchkit.frontend.xml.entity import SourceFile, XmlEntity
 
 #: The largest launch file read (a generous bound: the largest real ones are under 100 kB).
 MAX_FILE_SIZE = 256 * 1024 * 1024
+_DECLARED_ENCODING = re.compile(rb"""^\s*<\?xml[^>]*encoding\s*=\s*["']([A-Za-z0-9._-]+)["']""")
 
 
 class XmlParser:
@@ -46,17 +41,12 @@ class XmlParser:
                     included_from or Location(str(path)),
                     expected=f"a launch file of at most {MAX_FILE_SIZE} bytes",
                 )
-            if status.st_size <= MAX_PLAIN_SIZE:
-                return self.parse_bytes(path.read_bytes(), path)
-            from launchkit.frontend.xml.stream import CHUNK_SIZE
-
-            with path.open("rb") as stream:
-                chunks = iter(functools.partial(stream.read, CHUNK_SIZE), b"")
-                return self._parse(chunks, path, path.read_bytes)
+            data = path.read_bytes()
         except OSError as error:
             raise LaunchFileError(
                 f"cannot read '{path}': {error.strerror}", included_from
             ) from None
+        return self.parse_bytes(data, path)
 
     def parse_text(self, text: str, path: Path) -> LaunchDescription:
         """Parse launch XML ``text`` as if read from ``path``."""
@@ -66,56 +56,21 @@ class XmlParser:
         """Parse launch XML ``data`` as if read from ``path``: in the encoding its declaration
         or byte order mark names (lxml reads it), else UTF-8; a byte that is not valid in
         that encoding is an error at its line and column."""
-        plain = read_plain(data)
-        if plain is not None:
-            root, encoding = plain
-            source = SourceFile(path, _decoded(data, encoding))
-            del data, plain  # its bytes go before its actions are built
-            entity = XmlEntity(root, source)
-            deprecated = read_root(entity)
-            return LaunchDescription(path, self.actions.parse_actions(entity), deprecated)
-        from launchkit.frontend.xml.stream import CHUNK_SIZE
-
-        chunks = (data[start : start + CHUNK_SIZE] for start in range(0, len(data), CHUNK_SIZE))
-        return self._parse(chunks, path, lambda: data)
-
-    def _parse(
-        self, chunks: Iterable[bytes], path: Path, whole: Callable[[], bytes]
-    ) -> LaunchDescription:
-        """Parse the file as a stream; a file that is not well-formed, or whose encoding is
-        not one the stream reads (UTF-16, say), is read again whole (``whole()``), which
-        reports its error as it always has."""
-        from lxml import etree  # with inspect, typing, gzip: only for a file expat does not read
-
-        from launchkit.frontend.xml.stream import ElementStream, NotStreamable
-
-        stream = ElementStream(self.actions, path)
-        try:
-            for chunk in chunks:
-                stream.feed(chunk)
-            return stream.close()
-        except (etree.XMLSyntaxError, NotStreamable):
-            pass
-        return self.parse_whole(whole(), path)
-
-    def parse_whole(self, data: bytes, path: Path) -> LaunchDescription:
-        """Parse ``data`` as one tree (the stream's fallback): its errors name the line and
-        column, and an undecodable byte its offset."""
         root, encoding = _read_with_lxml(data, path)
-        source = SourceFile(path, _decoded(data, encoding))
-        del data  # a large file: its bytes go before its actions are built
-        entity = XmlEntity(root, source)
-        deprecated = read_root(entity)
+        entity = XmlEntity(root, SourceFile(path, _decoded(data, encoding)))
+        if entity.tag != "launch":
+            raise entity.error(
+                f"the root element is <{entity.tag}>", expected="<launch> as the root element"
+            )
+        deprecated = entity.raw("deprecated")
+        entity.assert_fully_read()
         return LaunchDescription(path, self.actions.parse_actions(entity), deprecated)
 
 
-def _read_with_lxml(data: bytes, path: Path) -> tuple[AnyElement, str | None]:
-    """The root element and encoding lxml reads; its error, located, for a malformed file."""
-    from lxml import etree  # with inspect, typing, gzip: only for a file expat does not read
-
-    from launchkit.frontend.xml.stream import PARSER_OPTIONS
-
-    parser = etree.XMLParser(**PARSER_OPTIONS)
+def _read_with_lxml(data: bytes, path: Path) -> tuple[etree._Element, str | None]:
+    """The root element and encoding lxml reads; its error, located, for a malformed file.
+    No entity is expanded (no XXE, no "billion laughs"); lxml's ``no_network`` stays on."""
+    parser = etree.XMLParser(remove_comments=True, remove_pis=True, resolve_entities=False)
     try:
         root = etree.fromstring(data, parser)
     except etree.XMLSyntaxError as error:
@@ -137,9 +92,7 @@ def _undecodable(data: bytes, path: Path) -> LaunchFileError | None:
     line and column and byte offset; None when there is none (or a byte order mark rules)."""
     if data.startswith((b"\xff\xfe", b"\xfe\xff")):
         return None
-    from launchkit.frontend.xml.stream import DECLARED_ENCODING
-
-    declared = DECLARED_ENCODING.match(data[:200])
+    declared = _DECLARED_ENCODING.match(data[:200])
     encoding = declared.group(1).decode() if declared else "utf-8"
     try:
         data.decode(encoding)

@@ -18,13 +18,12 @@ from __future__ import annotations
 
 from collections.abc import Sequence
 
-from launchkit.description.substitutions.base import Text, Value
-from launchkit.description.substitutions.grammar import parse_value
+from launchkit.description.substitutions.base import Value
 from launchkit.errors import LaunchFileError, Location
 from launchkit.frontend.base_entity import Entity
 from launchkit.frontend.yaml.param_value import param_value
 from launchkit.frontend.yaml.scalars import describe, node_text
-from launchkit.safe_yaml import MERGE_TAG, Node
+from launchkit.safe_yaml import Node
 
 _NATIVE_TYPES: dict[str, tuple[type, ...]] = {"bool": (bool,), "float": (float,), "int": (int,)}
 _EXPECTED = {
@@ -41,8 +40,7 @@ class YamlEntity(Entity):
     SPLITS_LISTS = False
 
     def __init__(self, tag: str, node: Node, where: Location) -> None:
-        self.tag = tag  # Entity.__init__'s two fields, a call shorter (a large file's hot path)
-        self._read: set[str] = set()
+        super().__init__(tag)
         self.node = node
         self._where = where
         self._attributes: dict[str, tuple[Node, Node]] = {}
@@ -132,25 +130,6 @@ class YamlEntity(Entity):
             return node_text(node)
         raise self._type_error(name, node, _EXPECTED[native])
 
-    def value(self, name: str, native: str | None = None) -> Value | None:
-        """As :meth:`Entity.value` (through :meth:`attribute_text` for text), two calls
-        shorter (a large file's hot path)."""
-        if native is not None:
-            return super().value(name, native)
-        self._read.add(name)
-        found = self._attributes.get(name)
-        if found is None:
-            return None
-        node = found[1]
-        text = node.value
-        if node.kind != "scalar" or not isinstance(text, str):
-            text = self.attribute_text(name)  # None, or the error it is
-            if text is None:
-                return None
-        if "$" not in text and "\\" not in text:  # plain text: no location to find
-            return (Text(text),) if text else ()
-        return parse_value(text, self.attribute_location(name))
-
     def param_value(self, name: str, kind: str | None) -> tuple[Value, str | None] | None:
         """A parameter value with its YAML type kept (see ``param_value.py``)."""
         self._read.add(name)
@@ -161,8 +140,6 @@ class YamlEntity(Entity):
 
     def assert_fully_read(self) -> None:
         """Reject unread keys; an unread empty list is most likely an empty ``env: []``."""
-        if self._read.issuperset(self._attributes):  # the usual case, in one call
-            return
         for name, (key, value) in self._attributes.items():
             if name not in self._read and value.kind == "seq" and not value.items:
                 raise LaunchFileError(
@@ -243,10 +220,7 @@ def action_entity(parent: str, item: Node) -> YamlEntity:
 
 def _merged_pairs(node: Node) -> Sequence[tuple[Node, Node]]:
     """The mapping's pairs with ``<<`` merges applied (its own keys win, as in YAML)."""
-    for key, _ in node.pairs:  # any(key.is_merge_key ...), without a generator per mapping
-        if key.tag == MERGE_TAG and key.kind == "scalar":
-            break
-    else:
+    if not any(key.is_merge_key for key, _ in node.pairs):
         return node.pairs
     own = [(k, v) for k, v in node.pairs if not k.is_merge_key]
     names = {k.value for k, _ in own}

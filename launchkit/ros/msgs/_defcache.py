@@ -16,8 +16,12 @@ from __future__ import annotations
 
 import json
 import os
+import tempfile
+from importlib import import_module, metadata
 from pathlib import Path
 from typing import Any
+
+import rosbags.typesys.store as store
 
 from launchkit.envvars import CACHE_DIR
 
@@ -65,11 +69,9 @@ def cache_file(version: str) -> Path | None:
 def rosbags_version() -> str:
     """The installed rosbags' version, from its ``.dist-info`` folder beside the package.
 
-    ``importlib.metadata`` would take 50-150 ms on a busy machine to import and search every
-    path entry; the folder name says the same for a pip install.
+    ``importlib.metadata`` would take 50-150 ms on a busy machine to search every path entry;
+    the folder name says the same for a pip install.
     """
-    import rosbags.typesys.store as store  # what the typestore imports anyway
-
     site = Path(store.__file__).parents[2]
     try:
         found = [n for n in os.listdir(site) if n.startswith("rosbags-") and n.endswith(_INFO)]
@@ -77,14 +79,10 @@ def rosbags_version() -> str:
         found = []
     if len(found) == 1:
         return found[0][len("rosbags-") : -len(_INFO)]
-    from importlib.metadata import version
-
-    return version("rosbags")
+    return metadata.version("rosbags")
 
 
 def _from_store() -> Definitions:
-    from importlib import import_module
-
     module = import_module(f"rosbags.typesys.stores.{DISTRO}")
     return _checked(json.loads(json.dumps(module.FIELDDEFS)))
 
@@ -106,8 +104,6 @@ def _write(path: Path, version: str, defs: Definitions) -> None:
         {"format": FORMAT, "rosbags": version, "distro": DISTRO, "types": defs},
         separators=(",", ":"),
     )
-    import tempfile  # only here: it imports shutil, random, bz2 and lzma (~5 ms)
-
     tmp = None
     try:
         path.parent.mkdir(parents=True, exist_ok=True)

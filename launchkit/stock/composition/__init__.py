@@ -7,4 +7,6 @@ from pathlib import Path
 
 from launchkit.packages import PythonPackage
 
-PACKAGE = PythonPackage(name="composition", share=Path(__file__).resolve().parent, executables={})
+PACKAGE = PythonPackage(
+    name="composition", share=Path(__file__).resolve().parent, executables={}, stand_in=True
+)

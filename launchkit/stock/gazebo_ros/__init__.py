@@ -16,8 +16,8 @@ PACKAGE = PythonPackage(
     name="gazebo_ros",
     share=SHARE,
     executables={
-        "gzserver": "launchkit.stock.gazebo_ros.server",
-        "gazebo": "launchkit.stock.gazebo_ros.server",
+        "gzserver": "launchkit.stock.gazebo_ros.gzserver",
+        "gazebo": "launchkit.stock.gazebo_ros.gzserver",
         "spawn_entity.py": "launchkit.stock.gazebo_ros.spawn_entity",
         "diff_drive": "launchkit.stock.gazebo_ros.diff_drive_node",
         "camera": "launchkit.stock.gazebo_ros.camera_node",
@@ -25,4 +25,5 @@ PACKAGE = PythonPackage(
     },
     # what `ExecuteProcess(cmd=['gazebo', ...])` runs where Gazebo is not installed
     programs={"gazebo": "gazebo", "gzserver": "gzserver", "gzclient": "gzclient"},
+    stand_in=True,
 )

@@ -10,4 +10,5 @@ PACKAGE = PythonPackage(
     name="joint_state_publisher",
     share=Path(__file__).resolve().parent,
     executables={"joint_state_publisher": "launchkit.stock.joint_state_publisher.node"},
+    stand_in=True,
 )

@@ -11,4 +11,5 @@ PACKAGE = PythonPackage(
     name="joint_state_publisher_gui",
     share=Path(__file__).resolve().parent,
     executables={"joint_state_publisher_gui": "launchkit.stock.joint_state_publisher_gui.node"},
+    stand_in=True,
 )

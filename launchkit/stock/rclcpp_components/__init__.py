@@ -25,4 +25,5 @@ PACKAGE = PythonPackage(
         "component_container_mt": _CONTAINER,
         "component_container_isolated": _CONTAINER,
     },
+    stand_in=True,
 )

@@ -10,4 +10,5 @@ PACKAGE = PythonPackage(
     name="robot_state_publisher",
     share=Path(__file__).resolve().parent,
     executables={"robot_state_publisher": "launchkit.stock.robot_state_publisher.node"},
+    stand_in=True,
 )

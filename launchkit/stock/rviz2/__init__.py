@@ -11,4 +11,5 @@ PACKAGE = PythonPackage(
     share=Path(__file__).resolve().parent,
     executables={"rviz2": "launchkit.stock.rviz2.node"},
     programs={"rviz2": "rviz2"},
+    stand_in=True,
 )

@@ -10,7 +10,10 @@ images wider than :data:`MAX_PAGE_WIDTH` are sent with every n-th pixel of every
 bytes to send and to convert in the browser. Foxglove clients get every image whole.
 
 Every other type is sent as its fields (long arrays cut, as
-``ros2 topic echo`` does) for the topic list's message view.
+``ros2 topic echo`` does) for the topic list's message view, and ``/rosout``'s log lines whole
+for the console. Any topic can also be had in its fields form (:func:`to_fields`): every field
+of the message, which the plot reads its numbers from. Both go through one generic conversion
+(:func:`launchkit.ros.message_text.to_data`), whatever containers the message class uses.
 """
 
 from __future__ import annotations
@@ -23,11 +26,13 @@ from typing import Any
 
 import numpy as np
 
-from launchkit.ros.message_data import to_data
+from launchkit.ros.message_text import to_data
 from launchkit.ros.msgs import deserialize
 
 #: Longest array or string of a message shown whole in the topic list's message view.
 ECHO_TRUNCATE = 32
+#: Longest array or string of a message sent whole in its fields form (the plot's elements).
+FIELDS_TRUNCATE = 256
 #: Raw images wider than this are thinned for the page.
 MAX_PAGE_WIDTH = 640
 
@@ -95,6 +100,19 @@ def _string(msg: Any) -> dict[str, Any]:
     return {"data": str(msg.data)}
 
 
+def _log(msg: Any) -> dict[str, Any]:
+    """A ``/rosout`` line whole (the echo form would cut its text)."""
+    return {
+        "stamp": float(msg.stamp.sec) + float(msg.stamp.nanosec) * 1e-9,
+        "level": int(msg.level),
+        "name": str(msg.name),
+        "msg": str(msg.msg),
+        "file": str(msg.file),
+        "function": str(msg.function),
+        "line": int(msg.line),
+    }
+
+
 def _finite(value: Any) -> Any:
     """``value`` with non-finite floats as None (JSON has no NaN or Infinity)."""
     if isinstance(value, float):
@@ -116,6 +134,7 @@ _JSON: dict[str, Callable[[Any], dict[str, Any]]] = {
     "nav_msgs/msg/Odometry": _odometry,
     "sensor_msgs/msg/JointState": _joint_state,
     "std_msgs/msg/String": _string,
+    "rcl_interfaces/msg/Log": _log,
 }
 
 IMAGE_TYPES = ("sensor_msgs/msg/Image", "sensor_msgs/msg/CompressedImage")
@@ -166,6 +185,31 @@ def _compressed(topic: str, msg: Any, payload: bytes) -> bytes:
     return _binary(header, payload, msg)
 
 
+def to_json(body: dict[str, Any]) -> str:
+    """``body`` as compact JSON, non-finite floats as null (JSON has no NaN)."""
+    try:
+        return json.dumps(body, separators=(",", ":"), allow_nan=False)
+    except ValueError:  # a NaN somewhere (a bad transform, say): send it as null
+        return json.dumps(_finite(body), separators=(",", ":"), allow_nan=False)
+
+
+def to_fields(topic: str, type_name: str, payload: bytes, stamp_ns: int) -> str:
+    """Every field of one message (arrays and strings past :data:`FIELDS_TRUNCATE` cut), with
+    the time it arrived: what the plot and the echo of any type read.
+
+    Raises ``ValueError`` (or the decoder's own error) for bytes that are not a ``type_name``.
+    """
+    msg = deserialize(payload, type_name)
+    body = {
+        "op": "fields",
+        "topic": topic,
+        "type": type_name,
+        "t": stamp_ns * 1e-9,
+        "msg": to_data(msg, FIELDS_TRUNCATE),
+    }
+    return to_json(body)
+
+
 def to_page(topic: str, type_name: str, payload: bytes) -> PageFrame:
     """One message for the page: JSON text, or a binary frame for images.
 
@@ -178,7 +222,4 @@ def to_page(topic: str, type_name: str, payload: bytes) -> PageFrame:
         return _compressed(topic, msg, payload)
     convert = _JSON.get(type_name, _echo)
     body = {"op": "msg", "topic": topic, "type": type_name, "msg": convert(msg)}
-    try:
-        return json.dumps(body, separators=(",", ":"), allow_nan=False)
-    except ValueError:  # a NaN somewhere (a bad transform, say): send it as null
-        return json.dumps(_finite(body), separators=(",", ":"), allow_nan=False)
+    return to_json(body)

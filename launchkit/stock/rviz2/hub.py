@@ -12,12 +12,13 @@ from __future__ import annotations
 
 import time
 from collections import deque
+from collections.abc import Callable
 from dataclasses import dataclass, field
-from typing import Protocol
+from typing import Any, Protocol
 
 from launchkit.ros.msgs import deserialize
 from launchkit.stock.rviz2.assets import AssetCatalog
-from launchkit.stock.rviz2.convert import PageFrame, to_page
+from launchkit.stock.rviz2.convert import PageFrame, to_fields, to_page
 
 #: How many messages of a latched topic are kept for clients that subscribe later.
 LATCHED_HISTORY = 10
@@ -54,16 +55,29 @@ class Message:
     payload: bytes
     stamp_ns: int
     _page: PageFrame | None = None
-    _page_failed: bool = False
+    _fields: str | None = None
+    _failed: bool = False
 
     def page_frame(self) -> PageFrame | None:
-        """The message as a page reads it; None when its bytes do not decode."""
-        if self._page is None and not self._page_failed:
+        """The message as a page's views read it; None when its bytes do not decode."""
+        if self._page is None and not self._failed:
             try:
                 self._page = to_page(self.channel.topic, self.channel.type_name, self.payload)
             except Exception:  # bytes that are not the advertised type: nothing to show
-                self._page_failed = True
+                self._failed = True
         return self._page
+
+    def fields_frame(self) -> str | None:
+        """Every field of the message with its arrival time (the plot's form); None when its
+        bytes do not decode."""
+        if self._fields is None and not self._failed:
+            try:
+                self._fields = to_fields(
+                    self.channel.topic, self.channel.type_name, self.payload, self.stamp_ns
+                )
+            except Exception:  # bytes that are not the advertised type: nothing to show
+                self._failed = True
+        return self._fields
 
 
 class Source(Protocol):
@@ -86,6 +100,19 @@ class Source(Protocol):
 
     def publish(self, topic: str, type_name: str, payload: bytes) -> None:
         """Publish CDR bytes with an acquired publisher."""
+
+    def call_service(
+        self, service: str, type_name: str, request: Any, reply: Callable[[Any, str | None], None]
+    ) -> None:
+        """Call ``service`` with a ``type_name`` request message; ``reply(response, error)``
+        runs later on the hub's thread (``error`` None on success)."""
+
+
+class GraphWatcher(Protocol):
+    """A client that shows the node graph."""
+
+    def graph(self, model: dict[str, Any]) -> None:
+        """The graph as :func:`.graph_view.describe_graph` describes it, after each change."""
 
 
 class Session(Protocol):
@@ -140,6 +167,8 @@ class Hub:
         self._latched: dict[str, deque[Message]] = {}
         self._meters: dict[str, RateMeter] = {}
         self._publishers: dict[tuple[str, str], set[Session]] = {}
+        self._graph: dict[str, Any] | None = None
+        self._graph_watchers: set[GraphWatcher] = set()
 
     # -- clients -----------------------------------------------------------------------------
 
@@ -181,6 +210,27 @@ class Hub:
                 self.source.unsubscribe(topic)
             self._latched.pop(topic, None)
             self._meters.pop(topic, None)
+
+    def history(self, topic: str) -> list[Message]:
+        """The kept messages of a latched topic (for a client that wants them in a new form)."""
+        return list(self._latched.get(topic, ()))
+
+    def watch_graph(self, watcher: GraphWatcher, on: bool) -> None:
+        """Start (the graph now, then after each change) or stop telling ``watcher`` the graph."""
+        if not on:
+            self._graph_watchers.discard(watcher)
+            return
+        self._graph_watchers.add(watcher)
+        if self._graph is not None:
+            watcher.graph(self._graph)
+
+    def nodes_changed(self, model: dict[str, Any]) -> None:
+        """The node graph changed (nodes, topics, services or actions): tell who shows it."""
+        if model == self._graph:
+            return
+        self._graph = model
+        for watcher in list(self._graph_watchers):
+            watcher.graph(model)
 
     def wanted(self) -> list[str]:
         """The topics some client wants, sorted."""

@@ -93,6 +93,9 @@ def main(argv: list[str]) -> int:
 
 def serve(node: ros.Node, args: argparse.Namespace, config: RvizConfig) -> None:
     """Serve the viewer for ``node`` until shutdown (Ctrl-C or SIGTERM)."""
+    if args.ignored:
+        ignored = " ".join(args.ignored)
+        node.get_logger().info(f"ignoring {ignored}: no meaning for launchkit's browser viewer")
     server: ViewerServer | None = None
     link = RosLink(node)
     try:

@@ -13,17 +13,21 @@ from __future__ import annotations
 import functools
 import threading
 import time
+from collections.abc import Callable
 from typing import Any
 
 import launchkit.ros as ros
 from launchkit.ros.keyexpr import Token
-from launchkit.ros.msgs import get_message, message_definition
+from launchkit.ros.msgs import get_message, get_service, message_definition
+from launchkit.stock.rviz2.graph_view import describe_graph
 from launchkit.stock.rviz2.hub import Endpoint, Hub
 from launchkit.stock.rviz2.server import ViewerServer
 
 #: The topic joint_state_publisher_gui takes slider positions on (``~/slider_positions``).
 SLIDER_SUFFIX = "/slider_positions"
 JOINT_STATE = "sensor_msgs/msg/JointState"
+#: Seconds a service the page calls has to answer.
+CALL_TIMEOUT = 10.0
 #: Graph changes come in bursts (a node brings several topics up): refresh once after this.
 REFRESH_DELAY = 0.1
 
@@ -91,7 +95,7 @@ class RosLink:
     # -- the graph ---------------------------------------------------------------------------
 
     def _graph_event(self, token: Token, appeared: bool) -> None:  # zenoh's thread
-        if token.kind in ("MP", "MS") and self._server is not None:
+        if self._server is not None:  # any kind: the node graph shows nodes and services too
             self._server.post(self._refresh_soon)
 
     def _refresh_soon(self) -> None:  # the loop's thread
@@ -112,6 +116,8 @@ class RosLink:
                 )
         if self._hub is not None:
             self._hub.graph_changed(endpoints, slider_topic(tokens))
+            viewer = self.node.get_fully_qualified_name()
+            self._hub.nodes_changed({**describe_graph(tokens), "viewer": viewer})
 
     # -- Source ------------------------------------------------------------------------------
 
@@ -181,3 +187,24 @@ class RosLink:
             publisher = self._publishers.get((topic, type_name))
         if publisher is not None:
             publisher.publish(payload)
+
+    def call_service(
+        self, service: str, type_name: str, request: Any, reply: Callable[[Any, str | None], None]
+    ) -> None:
+        """Call ``service`` once with ``request`` (a ``type_name`` request message) through a
+        client made for the call; ``reply(response, error)`` runs on the server's loop."""
+        client = self.node.create_client(get_service(type_name), service)
+
+        def done(future: ros.Future) -> None:  # the spinning thread
+            error = future.exception()
+            response = None if error is not None else future.result()
+            self.node.destroy_client(client)
+            if self._server is not None:
+                self._server.post(reply, response, None if error is None else str(error))
+
+        if not client.service_is_ready():
+            self.node.destroy_client(client)
+            if self._server is not None:
+                self._server.post(reply, None, f"no server of {service} ({type_name}) is running")
+            return
+        client.call_async(request, CALL_TIMEOUT).add_done_callback(done)

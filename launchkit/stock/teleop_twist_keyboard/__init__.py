@@ -10,4 +10,5 @@ PACKAGE = PythonPackage(
     name="teleop_twist_keyboard",
     share=Path(__file__).resolve().parent,
     executables={"teleop_twist_keyboard": "launchkit.stock.teleop_twist_keyboard.node"},
+    stand_in=True,
 )

@@ -7,9 +7,7 @@ Parameters as the original's: ``speed`` (0.5), ``turn`` (1.0), ``speed_limit`` a
 
 from __future__ import annotations
 
-import signal
 import sys
-import threading
 from typing import Any
 
 import launchkit.ros as ros
@@ -18,7 +16,7 @@ from launchkit.ros.msgs.geometry_msgs.msg import Twist, TwistStamped, Vector3
 from launchkit.ros.msgs.std_msgs.msg import Header
 from launchkit.stock import _entry
 from launchkit.stock.teleop_twist_keyboard.keys import Teleop, Velocity
-from launchkit.stock.teleop_twist_keyboard.terminal import KeyReader
+from launchkit.stock.teleop_twist_keyboard.terminal import KeyReader, stop_on_signals
 
 #: How often the key loop wakes up to notice a shutdown (SIGTERM from a launcher).
 POLL_SEC = 0.1
@@ -28,7 +26,7 @@ def main(argv: list[str]) -> int:
     """Run the node until Ctrl-C or a shutdown; the terminal is always restored."""
     reader = KeyReader(sys.stdin.fileno())  # fails before any ROS set-up when not a terminal
     with _entry.ros_node(argv, "teleop_twist_keyboard") as node:
-        stop = _stop_on_signals()
+        stop = stop_on_signals()  # the zero twist still goes out after a stop request
         stamped = bool(node.declare_parameter("stamped", False).value)
         frame_id = str(node.declare_parameter("frame_id", "").value)
         if frame_id and not stamped:
@@ -58,18 +56,6 @@ def main(argv: list[str]) -> int:
             finally:
                 publish(Velocity())
     return 0
-
-
-def _stop_on_signals() -> threading.Event:
-    """An event set by SIGINT, SIGTERM or SIGHUP.
-
-    These replace the ROS layer's handlers, which would shut the node down at once: the key loop
-    stops instead, so the zero twist still goes out before the node closes.
-    """
-    stop = threading.Event()
-    for signum in (signal.SIGINT, signal.SIGTERM, signal.SIGHUP):
-        signal.signal(signum, lambda *_: stop.set())
-    return stop
 
 
 def _say(lines: list[str]) -> None:

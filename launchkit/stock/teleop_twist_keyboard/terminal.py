@@ -4,7 +4,9 @@ from __future__ import annotations
 
 import os
 import select
+import signal
 import termios
+import threading
 import tty
 from types import TracebackType
 
@@ -14,17 +16,20 @@ from launchkit.errors import UserError
 class KeyReader:
     """Reads one key at a time from a terminal in raw mode.
 
-    Raw mode lasts only while a key is awaited, so what the node prints in between keeps the
-    terminal's normal line endings; leaving the ``with`` block restores the saved settings
+    ``program`` (of ``package``) names the node in the error for an input that is not a
+    terminal. Raw mode lasts only while a key is awaited, so what the node prints in between
+    keeps the terminal's normal line endings; leaving the ``with`` block restores the saved settings
     whatever happened (exception, signal turned into an exception, Ctrl-C).
     """
 
-    def __init__(self, fd: int) -> None:
+    def __init__(
+        self, fd: int, program: str = "teleop_twist_keyboard", package: str | None = None
+    ) -> None:
         if not os.isatty(fd):
             raise UserError(
-                "teleop_twist_keyboard reads keys from a terminal, and its input is not one",
-                expected="to be run in a terminal, e.g. `launchkit exec teleop_twist_keyboard "
-                "teleop_twist_keyboard` in a second terminal",
+                f"{program} reads keys from a terminal, and its input is not one",
+                expected=f"to be run in a terminal, e.g. `launchkit exec {package or program} "
+                f"{program}` in a second terminal",
             )
         self.fd = fd
         self._saved = termios.tcgetattr(fd)
@@ -46,7 +51,9 @@ class KeyReader:
 
     def read_key(self, timeout: float | None = None) -> str | None:
         """The next key pressed, or None when ``timeout`` seconds pass without one."""
-        tty.setraw(self.fd)
+        # TCSANOW, not setraw's default TCSAFLUSH: keys typed ahead (the rest of an arrow key's
+        # three bytes) must not be thrown away
+        tty.setraw(self.fd, termios.TCSANOW)
         try:
             ready, _, _ = select.select([self.fd], [], [], timeout)
             if not ready:
@@ -57,3 +64,15 @@ class KeyReader:
             return data.decode("latin-1")
         finally:
             self.restore()
+
+
+def stop_on_signals() -> threading.Event:
+    """An event set by SIGINT, SIGTERM or SIGHUP.
+
+    These replace the ROS layer's handlers, which would shut the node down at once: a key loop
+    stops instead, and can finish what it must do before the node closes.
+    """
+    stop = threading.Event()
+    for signum in (signal.SIGINT, signal.SIGTERM, signal.SIGHUP):
+        signal.signal(signum, lambda *_: stop.set())
+    return stop

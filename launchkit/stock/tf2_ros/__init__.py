@@ -14,4 +14,5 @@ PACKAGE = PythonPackage(
         "static_transform_publisher": "launchkit.stock.tf2_ros.static_transform_publisher",
         "tf2_echo": "launchkit.stock.tf2_ros.tf2_echo",
     },
+    stand_in=True,
 )

@@ -56,7 +56,7 @@ def generate_launch_description():
         cmd=[
             sys.executable,
             "-m",
-            "launchkit.stock.gazebo_ros.server",
+            "launchkit.stock.gazebo_ros.gzserver",
             "-s",
             _plugin_if("init", "libgazebo_ros_init.so"),
             "-s",

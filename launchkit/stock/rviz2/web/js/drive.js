@@ -52,6 +52,7 @@ export class Drive {
 
   keyDown(event) {
     if (this.typing(event) || event.ctrlKey || event.metaKey || event.altKey) return;
+    if (this.ctx.drivingKeys && !this.ctx.drivingKeys()) return;
     const key = event.key;
     if (SPEEDS[key]) {
       this.speed *= SPEEDS[key][0];

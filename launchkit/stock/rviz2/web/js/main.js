@@ -3,11 +3,20 @@
 import * as THREE from "three";
 import { Connection } from "./connection.js";
 import { DISPLAY_FOR_TYPE, makeDisplay } from "./displays.js";
+import { ServiceCallerPanel } from "./calls.js";
+import { ConsolePanel } from "./console.js";
 import { Drive } from "./drive.js";
+import { GraphPanel } from "./graph.js";
 import { ImagePanel } from "./image.js";
 import { JointSliders } from "./joints.js";
+import { PanelTabs } from "./panels.js";
+import { ParametersPanel } from "./params.js";
+import { PlotPanel } from "./plot.js";
+import { PublisherPanel } from "./publisher.js";
 import { Scene3D } from "./scene.js";
 import { TfTree } from "./tf.js";
+import { TfTreePanel } from "./tftree.js";
+import { TurtlesimPanel } from "./turtlesim.js";
 
 const $ = (id) => document.getElementById(id);
 
@@ -155,6 +164,7 @@ function onMessage(message) {
   const { topic, type, msg } = message;
   if (type === "tf2_msgs/msg/TFMessage") {
     stats.tfMessages += 1;
+    tools.tf.observe(topic, msg.transforms);
     let changed = false;
     for (const t of msg.transforms) {
       if (t.t.every((v) => v !== null) && t.q.every((v) => v !== null)) changed = tf.set(t.parent, t.child, t.t, t.q) || changed;
@@ -163,6 +173,7 @@ function onMessage(message) {
   }
   for (const display of state.displays) if (display.enabled && display.topics().includes(topic)) display.onMessage(topic, type, msg);
   sliders.onMessage(topic, type, msg);
+  tools.turtlesim.onMessage(topic, type, msg);
   if (topic === state.watched) {
     const shown = type === "std_msgs/msg/String" && msg.data.length > 2000 ? { data: msg.data.slice(0, 2000) + "…" } : msg.fields || msg;
     $("echo").textContent = `${topic} (${type})\n${JSON.stringify(shown, null, 1)}`;
@@ -176,6 +187,7 @@ function onHello(hello) {
   if (newServer) {
     // a new (restarted) server: forget its predecessor's transforms and robot, and draw again
     tf.clear();
+    tools.tf.clear();
     for (const display of state.displays) display.reset();
     stats.robotLinks = 0;
     if (ctx.scene) ctx.scene.requestRender();
@@ -211,7 +223,7 @@ const images = new ImagePanel(ctx, $("image-panel"), $("image-topic"), $("image"
 const sliders = new JointSliders(ctx, $("joints-panel"), $("joints"), $("joints-topic"), $("joints-center"), $("joints-randomize"));
 ctx.conn = new Connection(url, {
   hello: onHello,
-  topics: (m) => { state.topics = m.topics; images.topicsChanged(m.topics); renderTopics(); },
+  topics: (m) => { state.topics = m.topics; images.topicsChanged(m.topics); tools.turtlesim.topicsChanged(m.topics); renderTopics(); },
   rates: (m) => { state.rates = m.rates; renderTopics(); },
   sliders: (m) => sliders.sliderTopic(m.topic),
   msg: onMessage,
@@ -219,6 +231,31 @@ ctx.conn = new Connection(url, {
   error: (m) => ctx.problem(`server: ${m.message}`),
   state: setConnected,
 });
+const topicsOf = () => state.topics;
+const tools = {
+  graph: new GraphPanel(ctx, $("graph-panel")),
+  console: new ConsolePanel(ctx, $("console-panel")),
+  plot: new PlotPanel(ctx, $("plot-panel"), topicsOf),
+  params: new ParametersPanel(ctx, $("params-panel")),
+  services: new ServiceCallerPanel(ctx, $("services-panel")),
+  publisher: new PublisherPanel(ctx, $("publisher-panel"), topicsOf),
+  tf: new TfTreePanel(ctx, $("tf-panel")),
+  // the first turtlesim to appear takes the page from the 3D view to its panel
+  turtlesim: new TurtlesimPanel(ctx, $("turtlesim-panel"), () => { if (tabs.current === "view") tabs.select("turtlesim"); }),
+};
+const tabs = new PanelTabs($("tabs"), [
+  { name: "view", title: "3D view", element: $("view") },
+  { name: "graph", title: "Node graph", element: $("graph-panel"), panel: tools.graph },
+  { name: "console", title: "Console", element: $("console-panel"), panel: tools.console },
+  { name: "plot", title: "Plot", element: $("plot-panel"), panel: tools.plot },
+  { name: "params", title: "Parameters", element: $("params-panel"), panel: tools.params },
+  { name: "services", title: "Service caller", element: $("services-panel"), panel: tools.services },
+  { name: "publisher", title: "Topic publisher", element: $("publisher-panel"), panel: tools.publisher },
+  { name: "tf", title: "TF tree", element: $("tf-panel"), panel: tools.tf },
+  { name: "turtlesim", title: "turtlesim", element: $("turtlesim-panel"), panel: tools.turtlesim },
+]);
+// driving keys belong to the 3D view: typing arrows in another panel moves nothing
+ctx.drivingKeys = () => tabs.current === "view";
 const cmdVel = new URLSearchParams(location.search).get("cmd_vel") || "/cmd_vel";
 new Drive(ctx, $("drive-pad"), $("drive-speed"), $("drive-topic"), cmdVel);
 // the view needs transforms whatever displays show
@@ -237,9 +274,13 @@ window.__viewer = {
   },
   sample: (points) => ctx.scene.sample(points),
   background: () => state.config?.background,
-  wanted: () => [...ctx.conn.counts.keys()].sort(),
+  wanted: () => ctx.conn.wantedTopics(),
   rates: () => ({ ...state.rates }), // as measured by the server, for the topics shown
   showImage: (topic) => { if (images.checkbox) images.checkbox.checked = Boolean(topic); images.show(topic); },
+  // the rqt panels: which is shown, and each one's state as a person would read it
+  panel: () => tabs.current,
+  showPanel: (name) => tabs.select(name),
+  tools,
   setDisplay(name, on) {
     const display = state.displays.find((d) => d.spec.name === name);
     if (display) display.setEnabled(on);
