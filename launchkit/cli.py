@@ -117,7 +117,11 @@ def build_parser() -> argparse.ArgumentParser:
         parents=[_launch_parser("launchkit check", "Check a launch file as --print would.")],
     )
     exec_ = commands.add_parser(
-        "exec", help="run one executable of a package (ros2 run; `launchkit run PKG EXEC` too)"
+        "exec",
+        help="run one executable of a package (ros2 run; `launchkit run PKG EXEC` too), or a "
+        "Python file with --python",
+        usage="launchkit exec [--prefix CMD] PACKAGE EXECUTABLE [ARGS...]\n"
+        "       launchkit exec --python FILE [ARGS...]",
     )
     exec_.add_argument(
         "--prefix", help="a command to run it under, in quotes (e.g. --prefix 'gdb -ex run --args')"
@@ -169,6 +173,8 @@ def main(argv: list[str] | None = None) -> int:
         return _guarded(lambda: build_main(argv[1:]), debug="--debug" in argv)
     if argv and argv[0] == "run" and _runs_an_executable(argv[1:]):
         argv = ["exec", *argv[1:]]  # ros2 run's spelling: launchkit run PKG EXEC [args]
+    if argv[:2] == ["exec", "--python"]:
+        return _guarded(lambda: _exec_python(argv[2:]), debug=False)
     args = build_parser().parse_args(argv)
     if args.command is None:
         build_parser().print_help()
@@ -342,23 +348,45 @@ def _print(report: str) -> None:
 
 def _exec(args: argparse.Namespace, packages: object) -> int:
     """``launchkit exec [--prefix CMD] PKG EXEC [args]`` (ros2 run): this process becomes the
-    executable, with a ``ros2`` on its PATH if it has none (:mod:`launchkit.ros_cli.ros2_shim`)."""
+    executable (see :func:`_run_as_child`)."""
     import shlex
 
     from launchkit.packages import PackageIndex
-    from launchkit.ros_cli.ros2_shim import with_ros2
 
     assert isinstance(packages, PackageIndex)
     prefix = shlex.split(args.prefix) if args.prefix else []
-    argv = prefix + packages.executable(args.package, args.executable) + list(args.args)
+    _run_as_child(prefix + packages.executable(args.package, args.executable) + list(args.args))
+    return 0  # not reached
+
+
+def _exec_python(argv: list[str]) -> int:
+    """``launchkit exec --python FILE [ARGS...]``: a user's own script, with the rclpy that a
+    process launchkit starts would get."""
+    if not argv or argv[0].startswith("-"):
+        raise UserError(
+            "exec --python needs a file", expected="launchkit exec --python FILE [ARGS...]"
+        )
+    if not os.path.isfile(argv[0]):
+        raise UserError(f"no file {argv[0]!r}", expected="a Python file to run")
+    _run_as_child([sys.executable, *argv])
+    return 0  # not reached
+
+
+def _run_as_child(argv: list[str]) -> None:
+    """Replace this process by ``argv``, in the environment launchkit gives its processes: a
+    ``ros2`` on its PATH if it has none (:mod:`launchkit.ros_cli.ros2_shim`), and the rclpy
+    chosen for it (:mod:`launchkit.ros.face`)."""
+    from launchkit.ros.face import child_environment
+    from launchkit.ros_cli.ros2_shim import with_ros2
+
     os.environ.update(with_ros2(os.environ))
+    os.environ.update(child_environment(argv, os.environ))
     os.environ.setdefault("PYTHONUNBUFFERED", "1")
     sys.stdout.flush()
     try:
         os.execvp(argv[0], argv)  # the executable's path is absolute; a prefix's is looked up
     except OSError as error:
         raise UserError(f"cannot run '{argv[0]}': {error.strerror}") from None
-    return 0  # not reached
 
 
 __all__ = ["console_main", "main"]

@@ -17,6 +17,11 @@
 ``LAUNCHKIT_NO_CGROUP``               any value: ``launchkit run`` makes no cgroup for its
                                       processes and relies on being their subreaper alone (see
                                       ``launchkit/runtime/containment.py``)
+``LAUNCHKIT_RCLPY``                   which rclpy the processes launchkit starts get: ``launchkit``
+                                      (its own, the face folder first on ``PYTHONPATH``) or ``ros``
+                                      (the real one); unset, a sourced ROS 2 install's when there
+                                      is one (``ROS_DISTRO`` and an ``rclpy`` in an
+                                      ``AMENT_PREFIX_PATH`` prefix), else launchkit's
 ``LAUNCHKIT_REMOTE_GRACE``            seconds an agent keeps a launch's processes once it lost the
                                       launcher (killed, or the link cut; default 10)
 ``LAUNCHKIT_ROUTER``                  the Zenoh router every node connects to (``tcp/HOST:PORT``,
@@ -78,6 +83,7 @@ AGENT_KEY = "LAUNCHKIT_AGENT_KEY"
 NO_CGROUP = "LAUNCHKIT_NO_CGROUP"
 AGENT_TIMEOUT = "LAUNCHKIT_AGENT_TIMEOUT"
 REMOTE_GRACE = "LAUNCHKIT_REMOTE_GRACE"
+RCLPY = "LAUNCHKIT_RCLPY"
 TIMEOUT_SCALE = "LAUNCHKIT_TIMEOUT_SCALE"
 VIEWER_PORT = "LAUNCHKIT_VIEWER_PORT"
 
@@ -90,6 +96,8 @@ NAMES = (
     LOG_FILE_MB,
     LOG_KEEP_RUNS,
     LOG_RUN_MB,
+    NO_CGROUP,
+    RCLPY,
     REMOTE_GRACE,
     ROUTER,
     ROUTER_ACCESS,

@@ -68,7 +68,7 @@ def run_play(
             player = Player(node, reader, options)
             return _play(player, node.get_logger(), keyboard)
         finally:
-            context.shutdown()
+            context.try_shutdown()
     finally:
         reader.close()
 

@@ -12,6 +12,7 @@ from launchkit.bag.writer_thread import WriterThread
 from launchkit.errors import RuntimeLaunchError
 from launchkit.ros.context import Context
 from launchkit.ros.executor import Executor
+from launchkit.ros.executors import SingleThreadedExecutor
 from launchkit.ros.logging import get_logger
 from launchkit.ros.node import Node
 from launchkit.ros.session import router_endpoint
@@ -48,7 +49,8 @@ def run_record(
     try:
         node = Node(node_name, context=context, start_parameter_services=False)
         log = node.get_logger()
-        executor = node.executor
+        executor = SingleThreadedExecutor(context=context)
+        executor.add_node(node)
         bag = BagWriter(path, writer_options)
         failures: list[BaseException] = []
 
@@ -80,7 +82,7 @@ def run_record(
         log.info(f"Recording stopped: {summary.message_count} messages in '{path}'")
         return 0
     finally:
-        context.shutdown()
+        context.try_shutdown()
 
 
 def _drain(recorder: Recorder, executor: Executor) -> None:

@@ -67,7 +67,6 @@ class Recorder:
         self._changed = threading.Event()
         self._discovering = not options.no_discovery
         self._log = node.get_logger()
-        self._executor = node.executor  # made now: the graph's thread only wakes it
         if options.use_sim_time:
             node.set_parameters([Parameter("use_sim_time", value=True)])
         self._changed.set()
@@ -77,7 +76,7 @@ class Recorder:
         # zenoh's thread: only note it and wake the spinning thread, which discovers
         if appeared and token.kind == "MP" and token.topic not in self.subscriptions:
             self._changed.set()
-            self._executor.wake()
+            self.node.wake()
 
     @property
     def discovering(self) -> bool:

@@ -17,7 +17,7 @@ from launchkit.bridge.service_route import ServiceBridge
 from launchkit.bridge.topic_route import MissingTypeError, TopicBridge
 from launchkit.errors import RuntimeLaunchError, UserError
 from launchkit.ros.context import Context
-from launchkit.ros.executor import Executor
+from launchkit.ros.executors import SingleThreadedExecutor as ZenohExecutor
 from launchkit.ros.node import Node
 from launchkit.ros.qos import QoSProfile
 
@@ -76,7 +76,7 @@ class Bridge:
                 signal_handler_options=SignalHandlerOptions.NO,
             )
         except Exception as exc:  # rcl's errors (a wrong RMW_IMPLEMENTATION, say): one line
-            self._zenoh_context.shutdown()
+            self._zenoh_context.try_shutdown()
             message = " ".join(str(exc).split())
             raise RuntimeLaunchError(f"rclpy cannot start: {message}") from None
         # two rclpy nodes: topics on a single-threaded executor (rclpy's multi-threaded one
@@ -98,7 +98,7 @@ class Bridge:
             num_threads=4, context=self._dds_context
         )
         self._dds_services_executor.add_node(self.dds_services_node)
-        self._zenoh_executor = Executor(context=self._zenoh_context)
+        self._zenoh_executor = ZenohExecutor(context=self._zenoh_context)
         self._zenoh_executor.add_node(self.zenoh_node)
         self._guard = EchoGuard()
         self._topics: dict[tuple[str, str], TopicBridge] = {}
@@ -267,7 +267,7 @@ class Bridge:
         self.dds_node.destroy_node()
         self.dds_services_node.destroy_node()
         self._dds_context.try_shutdown()
-        self._zenoh_context.shutdown()
+        self._zenoh_context.try_shutdown()
 
 
 def _other(side: str) -> str:

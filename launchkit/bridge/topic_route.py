@@ -3,7 +3,6 @@ other, CDR bytes passed through untouched (``raw=True`` on both sides)."""
 
 from __future__ import annotations
 
-from dataclasses import replace
 from typing import Any
 
 from launchkit.bridge._rclpy import message_class, to_rclpy_qos
@@ -70,9 +69,7 @@ class TopicBridge:
                 self._dds_class,
                 self.route.topic,
                 self._from_dds,
-                to_rclpy_qos(
-                    replace(self.route.qos, depth=max(self.route.qos.depth, READER_DEPTH))
-                ),
+                to_rclpy_qos(self.route.qos.replace(depth=max(self.route.qos.depth, READER_DEPTH))),
                 raw=True,
                 callback_group=self._group,
             )

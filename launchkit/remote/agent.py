@@ -331,7 +331,7 @@ class Agent:
             self._node.destroy_node()
             self._node = None
         if self._context is not None:
-            self._context.shutdown()
+            self._context.try_shutdown()
             self._context = None
         self._guard.dismiss()
         shutil.rmtree(self._scratch, ignore_errors=True)

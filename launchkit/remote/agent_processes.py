@@ -19,6 +19,7 @@ from typing import Any
 
 from launchkit.description.process_spec import ProcessSpec
 from launchkit.envvars import ROUTER, ROUTER_AUTOSTART, SUPERVISOR_SOCKET
+from launchkit.ros.face import child_environment
 from launchkit.runtime.lifecycle import SendSignal
 from launchkit.runtime.process import ManagedProcess
 
@@ -48,6 +49,7 @@ def build_spec(label: str, fields: Mapping[str, Any], scratch: Path, router: str
         local = scratch / f"{label}-{Path(path).name}"
         local.write_text(str(text))
         cmd = [part.replace(path, str(local)) for part in cmd]
+    env.update(child_environment(cmd, env))  # this host's face, unless the real rclpy is chosen
     cwd = fields.get("cwd")
     if cwd and not Path(cwd).is_dir():
         raise FileNotFoundError(2, f"no folder {cwd} on this host (the process's cwd)")

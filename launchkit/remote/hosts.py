@@ -159,7 +159,7 @@ class RemoteHosts:
                 entity.undeclare()
         self._entities = []
         if self._context is not None:
-            self._context.shutdown()
+            self._context.try_shutdown()
             self._context = None
 
     # -- agents ---------------------------------------------------------------------------

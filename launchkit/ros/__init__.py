@@ -1,4 +1,5 @@
-"""launchkit.ros: an rclpy-like ROS 2 node API over Zenoh, with the real ROS 2 message types.
+"""launchkit.ros: rclpy's API and behaviour over Zenoh, with the real ROS 2 message types
+(``import rclpy`` gets it through the face, :mod:`launchkit.ros.face`).
 
 ::
 
@@ -9,8 +10,11 @@
     node = ros.Node("talker")
     pub = node.create_publisher(String, "chatter", 10)
     node.create_timer(0.5, lambda: pub.publish(String(data="hello")))
-    ros.spin(node)
-    ros.shutdown()
+    try:
+        ros.spin(node)
+    except KeyboardInterrupt:  # Ctrl-C shuts ROS down and raises it, as in rclpy
+        pass
+    ros.try_shutdown()
 
 Nodes connect to the Zenoh router at ``$LAUNCHKIT_ROUTER`` (default tcp/127.0.0.1:7447, the one
 ``launchkit run`` hosts) and follow rmw_zenoh's wire conventions.
@@ -23,14 +27,19 @@ from typing import TYPE_CHECKING
 from launchkit._lazy import lazy_attributes
 
 if TYPE_CHECKING:
+    from launchkit.ros.callback_groups import (
+        CallbackGroup,
+        MutuallyExclusiveCallbackGroup,
+        ReentrantCallbackGroup,
+    )
     from launchkit.ros.clock import Clock, ClockType, Duration, ROSClock, Time
-    from launchkit.ros.context import Context, NotInitializedError
+    from launchkit.ros.context import Context, NotInitializedError, NotInitializedException
     from launchkit.ros.context import default_context as default_context
-    from launchkit.ros.executor import (
-        Executor,
-        ExternalShutdownException,
+    from launchkit.ros.executor import Executor, ExternalShutdownException
+    from launchkit.ros.executors import (
         MultiThreadedExecutor,
         SingleThreadedExecutor,
+        get_global_executor,
         spin,
         spin_once,
         spin_until_future_complete,
@@ -52,11 +61,15 @@ if TYPE_CHECKING:
         qos_profile_sensor_data,
         qos_profile_system_default,
     )
+    from launchkit.ros.signals import SignalHandlerOptions
     from launchkit.ros.task import Future
 
 # Names are imported on first use (PEP 562): importing one submodule, e.g. launchkit.ros.keyexpr
 # for the command-line tools, must not load the message types, numpy and the whole node API.
 _LAZY = {
+    "CallbackGroup": "launchkit.ros.callback_groups",
+    "MutuallyExclusiveCallbackGroup": "launchkit.ros.callback_groups",
+    "ReentrantCallbackGroup": "launchkit.ros.callback_groups",
     "Clock": "launchkit.ros.clock",
     "ClockType": "launchkit.ros.clock",
     "Duration": "launchkit.ros.clock",
@@ -64,14 +77,16 @@ _LAZY = {
     "Time": "launchkit.ros.clock",
     "Context": "launchkit.ros.context",
     "NotInitializedError": "launchkit.ros.context",
+    "NotInitializedException": "launchkit.ros.context",
     "default_context": "launchkit.ros.context",
     "Executor": "launchkit.ros.executor",
     "ExternalShutdownException": "launchkit.ros.executor",
-    "MultiThreadedExecutor": "launchkit.ros.executor",
-    "SingleThreadedExecutor": "launchkit.ros.executor",
-    "spin": "launchkit.ros.executor",
-    "spin_once": "launchkit.ros.executor",
-    "spin_until_future_complete": "launchkit.ros.executor",
+    "MultiThreadedExecutor": "launchkit.ros.executors",
+    "SingleThreadedExecutor": "launchkit.ros.executors",
+    "get_global_executor": "launchkit.ros.executors",
+    "spin": "launchkit.ros.executors",
+    "spin_once": "launchkit.ros.executors",
+    "spin_until_future_complete": "launchkit.ros.executors",
     "LoggingSeverity": "launchkit.ros.logging",
     "get_logger": "launchkit.ros.logging",
     "Node": "launchkit.ros.node",
@@ -87,6 +102,7 @@ _LAZY = {
     "ReliabilityPolicy": "launchkit.ros.qos",
     "qos_profile_sensor_data": "launchkit.ros.qos",
     "qos_profile_system_default": "launchkit.ros.qos",
+    "SignalHandlerOptions": "launchkit.ros.signals",
     "Future": "launchkit.ros.task",
     "QoSDurabilityPolicy": "launchkit.ros.qos:DurabilityPolicy",
     "QoSReliabilityPolicy": "launchkit.ros.qos:ReliabilityPolicy",
@@ -105,35 +121,61 @@ if TYPE_CHECKING:
 
 
 def init(
-    args: list[str] | None = None, *, context: Context | None = None, domain_id: int | None = None
+    args: list[str] | None = None,
+    *,
+    context: Context | None = None,
+    domain_id: int | None = None,
+    signal_handler_options: SignalHandlerOptions | None = None,
 ) -> None:
     """Initialize ROS for this process: parse ``--ros-args`` of ``args`` (default sys.argv).
 
-    Installs SIGINT/SIGTERM handlers (main thread only) that shut down the default context,
-    which makes ``spin`` return so that the node exits promptly.
+    For the default context (unless ``signal_handler_options`` says otherwise) SIGINT and
+    SIGTERM shut ROS down, as rclpy's handlers do: Ctrl-C then raises ``KeyboardInterrupt``
+    in the main thread, and a spinning executor raises ``ExternalShutdownException`` after
+    SIGTERM.
     """
-    from launchkit.ros.context import default_context, install_signal_handlers
+    from launchkit.ros.context import default_context
+    from launchkit.ros.signals import SignalHandlerOptions, install_signal_handlers
 
-    (context or default_context).init(args, domain_id)
-    if context is None or context is default_context:
-        install_signal_handlers()
+    context = context or default_context
+    if signal_handler_options is None:
+        signal_handler_options = (
+            SignalHandlerOptions.ALL if context is default_context else SignalHandlerOptions.NO
+        )
+    context.init(args, domain_id)
+    install_signal_handlers(signal_handler_options)
 
 
 def ok(*, context: Context | None = None) -> bool:
-    """True between ``init()`` and ``shutdown()`` (a SIGINT shuts down)."""
+    """True between ``init()`` and ``shutdown()`` (a signal shuts down)."""
     from launchkit.ros.context import default_context
 
     return (context or default_context).ok()
 
 
-def shutdown(*, context: Context | None = None) -> None:
-    """Destroy every entity and close the Zenoh session (safe to call twice)."""
+def shutdown(*, context: Context | None = None, uninstall_handlers: bool | None = None) -> None:
+    """Shut the context down: destroy every entity and close the Zenoh session.
+
+    As rclpy: an error when the context is not initialized or was shut down already (a signal
+    shuts it down: use :func:`try_shutdown` after catching ``KeyboardInterrupt``). The default
+    context's signal handlers are put back.
+    """
+    from launchkit.ros.context import default_context
+    from launchkit.ros.signals import uninstall_signal_handlers
+
+    target = context or default_context
+    try:
+        target.shutdown()
+    finally:
+        if uninstall_handlers or (uninstall_handlers is None and target is default_context):
+            uninstall_signal_handlers()
+
+
+def try_shutdown(*, context: Context | None = None) -> None:
+    """Shut the context down unless it is already (never an error)."""
     from launchkit.ros.context import default_context
 
-    (context or default_context).shutdown()
-
-
-try_shutdown = shutdown
+    (context or default_context).try_shutdown()
 
 
 def create_node(node_name: str, **kwargs: object) -> Node:
@@ -143,7 +185,17 @@ def create_node(node_name: str, **kwargs: object) -> Node:
     return Node(node_name, **kwargs)  # type: ignore[arg-type]
 
 
+def remove_ros_args(args: list[str] | None = None) -> list[str]:
+    """``args`` (default sys.argv) without its ``--ros-args`` sections."""
+    import sys
+
+    from launchkit.ros.arguments import remove_ros_args as remove
+
+    return remove(sys.argv if args is None else list(args))
+
+
 __all__ = [
+    "CallbackGroup",
     "Clock",
     "ClockType",
     "Context",
@@ -156,8 +208,10 @@ __all__ = [
     "InvalidParameterTypeException",
     "LoggingSeverity",
     "MultiThreadedExecutor",
+    "MutuallyExclusiveCallbackGroup",
     "Node",
     "NotInitializedError",
+    "NotInitializedException",
     "Parameter",
     "ParameterAlreadyDeclaredException",
     "ParameterNotDeclaredException",
@@ -167,16 +221,20 @@ __all__ = [
     "QoSProfile",
     "QoSReliabilityPolicy",
     "ROSClock",
+    "ReentrantCallbackGroup",
     "ReliabilityPolicy",
     "SetParametersResult",
+    "SignalHandlerOptions",
     "SingleThreadedExecutor",
     "Time",
     "create_node",
+    "get_global_executor",
     "get_logger",
     "init",
     "ok",
     "qos_profile_sensor_data",
     "qos_profile_system_default",
+    "remove_ros_args",
     "shutdown",
     "spin",
     "spin_once",

@@ -27,6 +27,8 @@ class RosArguments:
     enclave: str = "/"
     # which of params / params files came first: ("p", index) or ("f", index)
     param_order: list[tuple[str, int]] = field(default_factory=list)
+    rosout_logs: bool = True  # --disable-rosout-logs: nodes publish nothing on /rosout
+    stdout_logs: bool = True  # --disable-stdout-logs: loggers print nothing
 
 
 _FLAGS_WITHOUT_VALUE = {
@@ -69,6 +71,10 @@ def parse_ros_args(argv: list[str]) -> RosArguments:
     while i < len(items):
         flag = items[i]
         if flag in _FLAGS_WITHOUT_VALUE:
+            if flag.endswith("-rosout-logs"):
+                result.rosout_logs = flag.startswith("--enable")
+            elif flag.endswith("-stdout-logs"):
+                result.stdout_logs = flag.startswith("--enable")
             i += 1
             continue
         if i + 1 >= len(items):

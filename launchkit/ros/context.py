@@ -5,16 +5,14 @@ from __future__ import annotations
 import atexit
 import contextlib
 import os
-import signal
 import sys
 import threading
 import weakref
 from collections.abc import Callable
-from types import FrameType
 from typing import TYPE_CHECKING, Any, Protocol
 
 from launchkit.ros.arguments import RosArguments, parse_ros_args
-from launchkit.ros.keyexpr import domain_id
+from launchkit.ros.keyexpr import domain_id as domain_id_from_environment
 from launchkit.ros.logging import get_logger
 from launchkit.ros.router_access import ForeignRouterError
 from launchkit.ros.router_watch import watch_router
@@ -48,12 +46,27 @@ class ContextNode(Protocol):
         """Undeclare the node's entities (the context shuts down)."""
 
 
-class NotInitializedError(RuntimeError):
-    """A ROS entity was used before ``init()`` or after ``shutdown()``."""
+class NotInitializedException(Exception):
+    """A ROS entity was made before ``init()`` or after ``shutdown()`` (rclpy's exception)."""
+
+    def __init__(self, message: str | None = None) -> None:
+        text = "rclpy.init() has not been called."
+        super().__init__(f"{text} msg:{message}" if message else text)
+
+
+NotInitializedError = NotInitializedException  # launchkit's earlier name
+
+
+class RCLError(RuntimeError):
+    """What rcl reports as an error (rclpy's ``_rclpy_pybind11.RCLError``)."""
 
 
 class Context:
-    """One ROS context: its arguments, domain, Zenoh session and graph (both opened lazily)."""
+    """One ROS context: its arguments, domain, Zenoh session and graph (both opened lazily).
+
+    ``shutdown()`` is rclpy's: an error if the context was never initialized or is shut down
+    already (by a signal, say); ``try_shutdown()`` is the quiet one.
+    """
 
     def __init__(
         self, router: str | None = None, *, start_router: bool | None = None, client: bool = False
@@ -80,43 +93,52 @@ class Context:
         self.domain_id = 0
         self._nodes: weakref.WeakSet[ContextNode] = weakref.WeakSet()
 
-    def init(self, args: list[str] | None = None, domain: int | None = None) -> None:
+    def init(self, args: list[str] | None = None, domain_id: int | None = None) -> None:
         """Parse ``--ros-args`` and mark the context usable (the session opens on first use)."""
         with self._lock:
             if self._initialized:
-                raise RuntimeError("launchkit.ros.init() was already called for this context")
+                raise RuntimeError("Context.init() must only be called once")
+            if domain_id is not None and domain_id < 0:
+                raise RuntimeError(f"Domain id ({domain_id}) should not be lower than zero.")
             self.argv = list(sys.argv if args is None else args)
             self.ros_args = parse_ros_args(self.argv)
-            self.domain_id = domain_id() if domain is None else domain
+            self.domain_id = domain_id_from_environment() if domain_id is None else domain_id
             self._interrupted = False
             self._initialized = True
+            _contexts.add(self)
 
     def ok(self) -> bool:
-        """True between ``init()`` and ``shutdown()``."""
+        """True between ``init()`` and ``shutdown()`` (or a signal)."""
         return self._initialized and not self._interrupted
 
-    def interrupt(self) -> None:
-        """Make ``ok()`` false and wake every spinner, tearing nothing down.
+    def get_domain_id(self) -> int:
+        """The ROS domain (``ROS_DOMAIN_ID`` or ``init``'s ``domain_id``)."""
+        if not self._initialized:
+            raise RuntimeError("Context must be initialized before it can have a domain id")
+        return self.domain_id
 
-        Safe in a signal handler: the entities are destroyed later by ``shutdown()`` in the
-        thread that owns them (or at exit), never under a running callback.
+    def interrupt(self) -> None:
+        """Shut down as a signal does: ``ok()`` false and every spinner woken, nothing torn
+        down yet.
+
+        Safe in a signal handler: the entities are destroyed later by ``shutdown()`` or
+        ``try_shutdown()`` in the thread that owns them (or at exit), never under a running
+        callback.
         """
         self._interrupted = True
         for node in list(self._nodes):
             node.wake()
 
-    def require(self) -> None:
-        """Raise :class:`NotInitializedError` unless the context is usable."""
+    def require(self, what: str = "cannot create node") -> None:
+        """Raise :class:`NotInitializedException` unless the context is usable."""
         if not self._initialized:
-            raise NotInitializedError(
-                "launchkit.ros is not initialized: call launchkit.ros.init() first"
-            )
+            raise NotInitializedException(what)
 
     @property
     def session(self) -> zenoh.Session:
         """The context's Zenoh session (opened on first use, connected to the router)."""
         with self._lock:
-            self.require()
+            self.require("cannot use the context")
             if self._session is None:
                 endpoint = router_endpoint(self.router)
                 if not os.environ.get(SESSION_CONFIG_ENV):  # else the file names the router
@@ -165,15 +187,37 @@ class Context:
         self._nodes.add(node)
 
     def on_shutdown(self, callback: Callable[[], None]) -> None:
-        """Call ``callback`` when the context shuts down."""
+        """Call ``callback`` when the context shuts down (at once if it is shut down)."""
+        if self._initialized and not self.ok():
+            callback()
+            return
         self._shutdown_callbacks.append(callback)
 
     def shutdown(self) -> None:
-        """Stop everything: wake spinners, undeclare entities, close the session. Idempotent."""
+        """Stop everything: wake spinners, undeclare entities, close the session.
+
+        As rclpy: an error when the context was never initialized (or is shut down and torn
+        down already), and :class:`RCLError` when a signal shut it down first (it is torn
+        down all the same).
+        """
+        if not self._initialized:
+            raise RuntimeError("Context must be initialized before it can be shutdown")
+        interrupted = self._interrupted
+        self._teardown()
+        if interrupted:
+            raise RCLError("failed to shutdown: rcl_shutdown already called on the given context")
+
+    def try_shutdown(self) -> None:
+        """Shut down if not shut down already; never an error."""
+        if self._initialized:
+            self._teardown()
+
+    def _teardown(self) -> None:
         with self._lock:
             if not self._initialized:
                 return
             self._initialized = False
+            self._interrupted = False
             callbacks, self._shutdown_callbacks = self._shutdown_callbacks, []
             nodes = list(self._nodes)
         for node in nodes:
@@ -195,39 +239,30 @@ class Context:
                 self._session = None
 
 
+_contexts: weakref.WeakSet[Context] = weakref.WeakSet()
+
+
+def interrupt_all() -> None:
+    """Shut every initialized context down as a signal does (see :meth:`Context.interrupt`)."""
+    for context in list(_contexts):
+        if context.ok():
+            context.interrupt()
+
+
 def _say(level: str, message: str) -> None:
     getattr(get_logger("launchkit.ros"), level)(message)
 
 
 default_context = Context()
 _refusals: list[ForeignRouterError] = []  # of every context of the process
-_signals_installed = False
-_interrupts = 0
-
-
-def _on_signal(signum: int, frame: FrameType | None) -> None:
-    global _interrupts
-    _interrupts += 1
-    if _interrupts > 1:
-        raise KeyboardInterrupt
-    default_context.interrupt()
-
-
-def install_signal_handlers() -> None:
-    """SIGINT/SIGTERM shut the default context down (spin returns); a second one interrupts."""
-    global _signals_installed
-    if _signals_installed or threading.current_thread() is not threading.main_thread():
-        return
-    signal.signal(signal.SIGINT, _on_signal)
-    signal.signal(signal.SIGTERM, _on_signal)
-    _signals_installed = True
 
 
 def shutdown_all() -> None:
     """Shut the default context down and close every Zenoh session still open (what the
     process does at exit; ``launchkit._exit`` calls it before skipping the interpreter's
     teardown)."""
-    default_context.shutdown()
+    for context in list(_contexts):
+        context.try_shutdown()
     close_all()
 
 

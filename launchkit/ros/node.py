@@ -1,37 +1,56 @@
-"""``Node``: the rclpy-like entry point for publishers, subscriptions, timers, services, params."""
+"""``Node``: rclpy's entry point for publishers, subscriptions, timers, services, parameters.
+
+Every node, as in rclpy, publishes ``/parameter_events`` and (unless ``enable_rosout=False``)
+``/rosout``, serves its parameters (``start_parameter_services``) and, with
+``enable_logger_service=True``, its logger levels. Its callbacks belong to callback groups (the
+node's default group is mutually exclusive) and run in the executor it is added to.
+"""
 
 from __future__ import annotations
 
-from collections.abc import Callable
+import weakref
+from collections.abc import Iterator
 from typing import Any, TypeVar
 
 from launchkit.ros import names
 from launchkit.ros.arguments import parse_ros_args
-from launchkit.ros.clock import Clock, ClockType, ROSClock
-from launchkit.ros.context import Context, default_context
-from launchkit.ros.executor import Executor, Work, WorkQueue
+from launchkit.ros.callback_groups import (
+    CallbackGroup,
+    MutuallyExclusiveCallbackGroup,
+    ReentrantCallbackGroup,
+)
+from launchkit.ros.clock import Clock, ROSClock, Time
+from launchkit.ros.context import Context, NotInitializedException, default_context
+from launchkit.ros.executor import Executor
+from launchkit.ros.guard_condition import GuardCondition
 from launchkit.ros.keyexpr import node_token, topic_key
 from launchkit.ros.logging import RcutilsLogger, apply_log_levels
 from launchkit.ros.namesakes import NamesakeWatch
+from launchkit.ros.node_entities import EntityMethods
 from launchkit.ros.node_graph import GraphQueries
-from launchkit.ros.node_params import ParameterMethods, ParameterStore
+from launchkit.ros.node_params import ParameterMethods
+from launchkit.ros.parameter_store import ParameterStore, descriptor_message
 from launchkit.ros.params import Parameter, overrides_for
-from launchkit.ros.qos import QoSProfile, as_profile, qos_profile_services_default
-from launchkit.ros.services import Client, Service
+from launchkit.ros.qos import QoSProfile, ReliabilityPolicy, qos_profile_parameter_events
+from launchkit.ros.task import NodeTasks
 from launchkit.ros.timer import Timer
 from launchkit.ros.topics import Publisher, Subscription
+from launchkit.ros.work_queue import WorkQueue
 
 _E = TypeVar("_E")
+USE_SIM_TIME = "use_sim_time"
 
 
-class Node(ParameterMethods, GraphQueries):
+class Node(EntityMethods, ParameterMethods, GraphQueries):
     """A ROS node: a name in a namespace, owning publishers, subscriptions, timers, services.
 
     ``--ros-args`` of the process (``-r __node:=``, ``-r __ns:=``, ``-r from:=to``, ``-p``,
-    ``--params-file``, ``--log-level``) apply to it, as in rclpy. Its publishers,
-    subscriptions, services and clients use it through :class:`NodeInterface`, its executor
-    through ``timers`` and ``route_work``.
+    ``--params-file``, ``--log-level``) apply to it, as in rclpy. Its entities use it through
+    :class:`~launchkit.ros.node_interface.NodeInterface`, executors through ``work``,
+    ``timers`` and ``executor``.
     """
+
+    PARAM_REL_TOL = 1e-6
 
     def __init__(
         self,
@@ -41,17 +60,19 @@ class Node(ParameterMethods, GraphQueries):
         cli_args: list[str] | None = None,
         namespace: str | None = None,
         use_global_arguments: bool = True,
+        enable_rosout: bool = True,
         start_parameter_services: bool = True,
         parameter_overrides: list[Parameter] | None = None,
         allow_undeclared_parameters: bool = False,
         automatically_declare_parameters_from_overrides: bool = False,
-        enable_rosout: bool = True,
+        enable_logger_service: bool = False,
     ) -> None:
         self.context = context or default_context
-        self.context.require()
+        if not self.context.ok():
+            raise NotInitializedException("cannot create node")
         original = names.validate_node_name(node_name)
         rules = list(self.context.ros_args.remaps) if use_global_arguments else []
-        local_args = parse_ros_args(cli_args or [])  # needs its own "--ros-args", as rclpy
+        local_args = parse_ros_args(["--ros-args", *(cli_args or [])])
         rules = local_args.remaps + rules
         self._remaps = rules
         self._original_name = original
@@ -70,12 +91,20 @@ class Node(ParameterMethods, GraphQueries):
         overrides.update(overrides_for(local_args, original, fqn))
         for param in parameter_overrides or []:
             overrides[param.name] = param.value
-        self._params = ParameterStore(overrides, allow_undeclared_parameters)
+        self._params = ParameterStore(overrides, allow_undeclared_parameters, self._on_params)
 
         self._work = WorkQueue()
-        self._executor: Executor | None = None
+        self._scheduler = NodeTasks(self._work.put)
+        self._executor_ref: weakref.ref[Executor] | None = None
+        self._publishers: list[Publisher] = []
+        self._subscriptions: list[Subscription] = []
+        self._clients: list[Any] = []
+        self._services: list[Any] = []
         self._timers: list[Timer] = []
-        self._entities: list[Any] = []
+        self._guards: list[GuardCondition] = []
+        self._waitables: list[Any] = []
+        self._default_callback_group = MutuallyExclusiveCallbackGroup()
+        self._rate_group = ReentrantCallbackGroup()
         self._clock = ROSClock()
         self._clock_sub: Subscription | None = None
         self._destroyed = False
@@ -96,18 +125,40 @@ class Node(ParameterMethods, GraphQueries):
         self.context.add_node(self)
         own = (self._zid, str(self._node_id))
         namespace, name, warn = self._namespace, self._name, self._logger.warning
-        self._own(NamesakeWatch(session, self.context.domain_id, own, namespace, name, warn))
+        self._namesakes: NamesakeWatch | None = NamesakeWatch(
+            session, self.context.domain_id, own, namespace, name, warn
+        )
 
-        self._params.post_set.append(self._on_params_set)
-        self.declare_parameter("use_sim_time", False)
+        from launchkit.ros.msgs import get_message
+
+        self._parameter_event_publisher: Publisher | None = self.create_publisher(
+            get_message("rcl_interfaces/msg/ParameterEvent"),
+            "/parameter_events",
+            qos_profile_parameter_events,
+        )
+        self._rosout: Any = None
+        if enable_rosout and self.context.ros_args.rosout_logs:
+            from launchkit.ros.rosout import Rosout
+
+            self._rosout = Rosout(self.create_publisher, self._logger.name)
         if automatically_declare_parameters_from_overrides:
-            for name, value in overrides.items():
-                if name not in self._params.params:
-                    self.declare_parameter(name, value)
+            self.declare_parameters(
+                "",
+                [(name, value, descriptor_message()) for name, value in overrides.items()],
+                ignore_override=True,
+            )
+        if not self.has_parameter(USE_SIM_TIME):
+            self.declare_parameter(USE_SIM_TIME, False)
+        self._use_sim_time(self.get_parameter(USE_SIM_TIME).value is True)
+        self._params.post_set.append(self._on_params_set)
         if start_parameter_services:
             from launchkit.ros.parameter_service import ParameterService
 
-            self._parameter_service: Any = ParameterService(self)
+            self._parameter_service = ParameterService(self)
+        if enable_logger_service:
+            from launchkit.ros.logger_service import LoggerService
+
+            self._logger_service = LoggerService(self.create_service, self._name)
 
     # names ------------------------------------------------------------------------------
     def get_name(self) -> str:
@@ -153,126 +204,52 @@ class Node(ParameterMethods, GraphQueries):
         """The node's ROS clock (follows ``/clock`` when ``use_sim_time`` is true)."""
         return self._clock
 
+    def _on_params(self, new: list[Any], changed: list[Any], deleted: list[Any]) -> None:
+        """Publish a successful declare or set on ``/parameter_events``."""
+        publisher = getattr(self, "_parameter_event_publisher", None)
+        if publisher is None:
+            return
+        from launchkit.ros.msgs import get_message
+
+        event = get_message("rcl_interfaces/msg/ParameterEvent")(
+            stamp=self._clock.now().to_msg(),
+            node=self.get_fully_qualified_name(),
+            new_parameters=new,
+            changed_parameters=changed,
+            deleted_parameters=deleted,
+        )
+        publisher.publish(event)
+
     def _on_params_set(self, params: list[Parameter]) -> None:
         for param in params:
-            if param.name == "use_sim_time":
-                self._use_sim_time(bool(param.value))
+            if param.name == USE_SIM_TIME:
+                if param.value is not True and param.value is not False:
+                    self._logger.error(
+                        f"Invalid type for parameter '{USE_SIM_TIME}' {param.type_!r} "
+                        "should be bool"
+                    )
+                    continue
+                self._use_sim_time(param.value)
 
     def _use_sim_time(self, enabled: bool) -> None:
         if enabled == self._clock.ros_time_is_active:
             return
         if enabled:
             from launchkit.ros.msgs import get_message
-            from launchkit.ros.qos import ReliabilityPolicy
 
             clock_type = get_message("rosgraph_msgs/msg/Clock")
-            self._clock._set_ros_time_override(True)
+            self._clock._set_ros_time_is_active(True)
             self._clock_sub = self.create_subscription(
                 clock_type,
                 "/clock",
-                lambda msg: self._clock._set_sim_time(
-                    msg.clock.sec * 1_000_000_000 + msg.clock.nanosec
-                ),
+                lambda msg: self._clock.set_ros_time_override(Time.from_msg(msg.clock)),
                 QoSProfile(depth=1, reliability=ReliabilityPolicy.BEST_EFFORT),
             )
         else:
             if self._clock_sub is not None:
                 self.destroy_subscription(self._clock_sub)
                 self._clock_sub = None
-            self._clock._set_ros_time_override(False)
-
-    # entities -----------------------------------------------------------------------------
-    def create_publisher(
-        self, msg_type: Any, topic: str, qos_profile: QoSProfile | int, **_: Any
-    ) -> Publisher:
-        """A publisher of ``msg_type`` on ``topic`` (``qos_profile``: a profile or a depth)."""
-        return self._own(Publisher(self, msg_type, topic, as_profile(qos_profile)))
-
-    def create_subscription(
-        self,
-        msg_type: Any,
-        topic: str,
-        callback: Callable[..., Any],
-        qos_profile: QoSProfile | int,
-        *,
-        raw: bool = False,
-        **_: Any,
-    ) -> Subscription:
-        """Call ``callback(msg)`` or ``callback(msg, info)`` for each message on ``topic``."""
-        return self._own(
-            Subscription(self, msg_type, topic, callback, as_profile(qos_profile), raw)
-        )
-
-    def create_timer(
-        self,
-        timer_period_sec: float,
-        callback: Callable[[], Any] | None,
-        clock: Clock | None = None,
-        **_: Any,
-    ) -> Timer:
-        """Call ``callback`` every ``timer_period_sec`` of the node's clock."""
-        timer = Timer(callback, timer_period_sec, clock or self._clock)
-        self._timers.append(timer)
-        self._work.wake()
-        return timer
-
-    def create_rate(self, frequency: float, clock: Clock | None = None) -> Any:
-        """A rate to ``sleep()`` at ``frequency`` Hz (in a thread other than the spinning one)."""
-        from launchkit.ros.rate import Rate
-
-        return Rate(frequency, clock or Clock(clock_type=ClockType.STEADY_TIME))
-
-    def create_service(
-        self,
-        srv_type: Any,
-        srv_name: str,
-        callback: Callable[..., Any],
-        *,
-        qos_profile: QoSProfile | int = qos_profile_services_default,
-        raw: bool = False,
-        **_: Any,
-    ) -> Any:
-        """Serve ``srv_name``: ``callback(request, response)`` returns the response (raw: bytes)."""
-        return self._own(Service(self, srv_type, srv_name, callback, as_profile(qos_profile), raw))
-
-    def create_client(
-        self,
-        srv_type: Any,
-        srv_name: str,
-        *,
-        qos_profile: QoSProfile | int = qos_profile_services_default,
-        raw: bool = False,
-        **_: Any,
-    ) -> Any:
-        """A client of ``srv_name`` (``call``, ``call_async``, ``wait_for_service``)."""
-        return self._own(Client(self, srv_type, srv_name, as_profile(qos_profile), raw))
-
-    def destroy_publisher(self, publisher: Publisher) -> bool:
-        """Undeclare ``publisher``."""
-        publisher.destroy()
-        return True
-
-    def destroy_subscription(self, subscription: Subscription) -> bool:
-        """Undeclare ``subscription``."""
-        subscription.destroy()
-        return True
-
-    def destroy_timer(self, timer: Timer) -> bool:
-        """Stop and drop ``timer``."""
-        timer.destroy()
-        if timer in self._timers:
-            self._timers.remove(timer)
-        return True
-
-    def destroy_service(self, service: Any) -> bool:
-        """Undeclare ``service``."""
-        service.destroy()
-        return True
-
-    def destroy_client(self, client: Any) -> bool:
-        """Undeclare ``client``."""
-        client.destroy()
-        return True
+            self._clock._set_ros_time_is_active(False)
 
     # the node interface (what its entities use; see node_interface.py) -------------------
     @property
@@ -285,43 +262,93 @@ class Node(ParameterMethods, GraphQueries):
         """The node's id within its context."""
         return self._node_id
 
+    @property
+    def scheduler(self) -> NodeTasks:
+        """Where the done callbacks of the node's futures are scheduled (its work queue)."""
+        return self._scheduler
+
     def topic_key(self, fqn: str, type_name: str, type_hash: str) -> str:
         """The Zenoh key expression of a topic or service of this node's domain."""
         return topic_key(self.context.domain_id, fqn, type_name, type_hash)
 
-    def post(self, work: Work) -> None:
-        """Run ``work`` in the thread that spins the node (called from Zenoh's threads)."""
+    def post(self, work: Any) -> None:
+        """Queue a ready entity or a task for the executor (called from Zenoh's threads)."""
         self._work.put(work)
 
     def forget(self, entity: object) -> None:
-        """``entity`` was destroyed: the node no longer closes it at shutdown."""
-        if entity in self._entities:
-            self._entities.remove(entity)
-
-    def _own(self, entity: _E) -> _E:
-        self._entities.append(entity)
-        return entity
+        """``entity`` was destroyed: the node no longer holds it."""
+        for entities in (self._publishers, self._subscriptions, self._clients, self._services):
+            if entity in entities:
+                entities.remove(entity)  # type: ignore[arg-type]
 
     # executor plumbing (what executors and the context use) --------------------------------
     @property
-    def executor(self) -> Executor:
-        """The executor running this node's callbacks (one of its own unless it was added to
-        another)."""
-        if self._executor is None:
-            self._executor = Executor(context=self.context)
-            self._executor.add_node(self)
-        return self._executor
+    def default_callback_group(self) -> CallbackGroup:
+        """The group of the entities made without one (mutually exclusive)."""
+        return self._default_callback_group
+
+    @property
+    def executor(self) -> Executor | None:
+        """The executor the node was added to, if any."""
+        return None if self._executor_ref is None else self._executor_ref()
+
+    @executor.setter
+    def executor(self, new_executor: Executor | None) -> None:
+        current = self.executor
+        if current is new_executor:
+            return
+        if current is not None:
+            current.remove_node(self)
+        if new_executor is None:
+            self._executor_ref = None
+        else:
+            new_executor.add_node(self)
+            self._executor_ref = weakref.ref(new_executor)
+
+    @property
+    def work(self) -> WorkQueue:
+        """The node's queue of ready entities and tasks."""
+        return self._work
+
+    @property
+    def publishers(self) -> Iterator[Publisher]:
+        """The node's publishers."""
+        yield from self._publishers
+
+    @property
+    def subscriptions(self) -> Iterator[Subscription]:
+        """The node's subscriptions."""
+        yield from self._subscriptions
+
+    @property
+    def clients(self) -> Iterator[Any]:
+        """The node's service clients."""
+        yield from self._clients
+
+    @property
+    def services(self) -> Iterator[Any]:
+        """The node's services."""
+        yield from self._services
 
     @property
     def timers(self) -> list[Timer]:
-        """The node's timers, for its executor."""
+        """The node's timers."""
         return list(self._timers)
 
-    def route_work(self, queue: WorkQueue | None) -> WorkQueue:
-        """Send the node's callbacks to ``queue`` from now on (None: a queue of its own, when
-        it leaves an executor); the previous queue, whose pending work the caller moves."""
-        previous, self._work = self._work, queue or WorkQueue()
-        return previous
+    @property
+    def guards(self) -> Iterator[GuardCondition]:
+        """The node's guard conditions."""
+        yield from self._guards
+
+    @property
+    def waitables(self) -> Iterator[Any]:
+        """The waitables added to the node (action servers and clients)."""
+        yield from self._waitables
+
+    def _wake_executor(self) -> None:
+        executor = self.executor
+        if executor is not None:
+            executor.wake()
 
     def wake(self) -> None:
         """Make a blocked spin of this node look again (shutdown, a new timer)."""
@@ -329,10 +356,23 @@ class Node(ParameterMethods, GraphQueries):
 
     def close_entities(self) -> None:
         """Undeclare every entity and the node's token (the context is shutting down)."""
-        for entity in list(self._entities):
+        if self._rosout is not None:
+            self._rosout.destroy()
+            self._rosout = None
+        self._parameter_event_publisher = None
+        if self._namesakes is not None:
+            self._namesakes.destroy()
+            self._namesakes = None
+        for entity in [*self._publishers, *self._subscriptions, *self._clients, *self._services]:
             entity.destroy()
         for timer in self._timers:
             timer.destroy()
+        self._publishers.clear()
+        self._subscriptions.clear()
+        self._clients.clear()
+        self._services.clear()
+        self._timers.clear()
+        self._guards.clear()
         if self._token is not None:
             try:
                 self._token.undeclare()
@@ -341,9 +381,10 @@ class Node(ParameterMethods, GraphQueries):
             self._token = None
 
     def destroy_node(self) -> None:
-        """Undeclare everything the node owns (its executor stops running it)."""
+        """Destroy everything the node owns (its executor stops running it)."""
         if self._destroyed:
             return
         self._destroyed = True
         self.close_entities()
+        self._wake_executor()
         self.wake()

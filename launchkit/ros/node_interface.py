@@ -2,19 +2,20 @@
 
 The entities are built by :class:`launchkit.ros.Node` and hold on to it, but they see it only
 through :class:`NodeInterface`: names, the context, its identity on the graph, and the two
-hooks into its executor (hand work to the spinning thread, forget a destroyed entity). This
+hooks into its executor (queue ready work, forget a destroyed entity). This
 keeps ``topics.py`` and ``services.py`` from depending on ``node.py`` (which builds them), and
 says in one place what the node must keep stable for them.
 """
 
 from __future__ import annotations
 
-from typing import TYPE_CHECKING, Protocol
+from typing import TYPE_CHECKING, Any, Protocol
 
 if TYPE_CHECKING:
+    from launchkit.ros.callback_groups import CallbackGroup
     from launchkit.ros.context import Context
-    from launchkit.ros.executor import Work
     from launchkit.ros.logging import RcutilsLogger
+    from launchkit.ros.task import NodeTasks
 
 
 class NodeInterface(Protocol):
@@ -53,8 +54,16 @@ class NodeInterface(Protocol):
     def topic_key(self, fqn: str, type_name: str, type_hash: str) -> str:
         """The Zenoh key expression of a topic or service of this node's domain."""
 
-    def post(self, work: Work) -> None:
-        """Run ``work`` in the thread that spins the node (called from Zenoh's threads)."""
+    @property
+    def default_callback_group(self) -> CallbackGroup:
+        """The group of the entities made without one."""
+
+    @property
+    def scheduler(self) -> NodeTasks:
+        """Where the done callbacks of the entities' futures are scheduled."""
+
+    def post(self, work: Any) -> None:
+        """Queue a ready entity or a task for the node's executor (any thread)."""
 
     def forget(self, entity: object) -> None:
         """``entity`` was destroyed: the node no longer closes it at shutdown."""

@@ -1,118 +1,136 @@
-"""The ``~/list_parameters``, ``~/get_parameters``, ``~/set_parameters``... services of a node."""
+"""The ``~/list_parameters``, ``~/get_parameters``, ``~/set_parameters``... services of a node,
+answering as rclpy's ``ParameterService`` does."""
 
 from __future__ import annotations
 
-import functools
 from collections.abc import Callable
 from typing import Any, Protocol
 
+from launchkit.ros.exceptions import (
+    ParameterNotDeclaredException,
+    ParameterUninitializedException,
+)
 from launchkit.ros.msgs import get_message, get_service
-from launchkit.ros.node_params import SetParametersResult
-from launchkit.ros.params import Parameter, ParameterType
-from launchkit.ros.qos import qos_profile_parameters
+from launchkit.ros.parameter_store import result_message
+from launchkit.ros.params import Parameter
+from launchkit.ros.qos import QoSProfile, qos_profile_parameters
 
 
 class ParameterNode(Protocol):
     """What the services use of their node (:class:`launchkit.ros.Node`)."""
 
+    def get_name(self) -> str:
+        """The node's name."""
+
     def create_service(
-        self, srv_type: Any, srv_name: str, callback: Callable[[Any, Any], Any], **_: Any
+        self,
+        srv_type: Any,
+        srv_name: str,
+        callback: Callable[..., Any],
+        *,
+        qos_profile: QoSProfile | int = ...,
+        callback_group: Any = ...,
+        raw: bool = ...,
     ) -> Any:
         """Serve ``srv_name``."""
 
-    def get_parameters_by_prefix(self, prefix: str) -> dict[str, Parameter]:
-        """The declared parameters under ``prefix`` (all of them for ``""``)."""
+    def describe_parameter(self, name: str) -> Any:
+        """A parameter's descriptor."""
 
-    def set_parameters(self, parameter_list: list[Parameter]) -> list[SetParametersResult]:
-        """Set parameters one by one."""
+    def get_parameter(self, name: str) -> Parameter:
+        """A declared parameter."""
 
-    def set_parameters_atomically(self, parameter_list: list[Parameter]) -> SetParametersResult:
+    def get_parameter_type(self, name: str) -> Any:
+        """A parameter's type number."""
+
+    def list_parameters(self, prefixes: list[str], depth: int) -> Any:
+        """A ListParametersResult."""
+
+    def set_parameters_atomically(self, parameter_list: list[Parameter]) -> Any:
         """Set all or none."""
 
 
+_SERVICES = (
+    ("DescribeParameters", "describe_parameters"),
+    ("GetParameters", "get_parameters"),
+    ("GetParameterTypes", "get_parameter_types"),
+    ("ListParameters", "list_parameters"),
+    ("SetParameters", "set_parameters"),
+    ("SetParametersAtomically", "set_parameters_atomically"),
+)
+
+
 class ParameterService:
-    """Serves a node's parameters the way rclpy does (for ``launchkit param ...``), with
-    rclpy's ``qos_profile_parameters`` (depth 1000)."""
+    """Serves a node's parameters (``<node name>/<service>``, rclpy's
+    ``qos_profile_parameters``): what ``launchkit param`` and ``ros2 param`` call."""
 
     def __init__(self, node: ParameterNode) -> None:
         self.node = node
-        prefix = "~/"
-        serve = functools.partial(node.create_service, qos_profile=qos_profile_parameters)
-        serve(
-            get_service("rcl_interfaces/srv/ListParameters"), prefix + "list_parameters", self._list
-        )
-        serve(get_service("rcl_interfaces/srv/GetParameters"), prefix + "get_parameters", self._get)
-        serve(
-            get_service("rcl_interfaces/srv/GetParameterTypes"),
-            prefix + "get_parameter_types",
-            self._types,
-        )
-        serve(get_service("rcl_interfaces/srv/SetParameters"), prefix + "set_parameters", self._set)
-        serve(
-            get_service("rcl_interfaces/srv/SetParametersAtomically"),
-            prefix + "set_parameters_atomically",
-            self._set_atomically,
-        )
-        serve(
-            get_service("rcl_interfaces/srv/DescribeParameters"),
-            prefix + "describe_parameters",
-            self._describe,
-        )
+        for type_name, service in _SERVICES:
+            node.create_service(
+                get_service(f"rcl_interfaces/srv/{type_name}"),
+                f"{node.get_name()}/{service}",
+                getattr(self, f"_{service}"),
+                qos_profile=qos_profile_parameters,
+            )
 
-    def _list(self, request: Any, response: Any) -> Any:
-        names = sorted(self.node.get_parameters_by_prefix(""))
-        prefixes = list(request.prefixes)
-        depth = int(request.depth)
-        selected = []
-        for name in names:
-            if prefixes and not any(name == p or name.startswith(p + ".") for p in prefixes):
-                continue
-            if depth:
-                rest = name
-                for p in prefixes:
-                    if name.startswith(p + "."):
-                        rest = name[len(p) + 1 :]
-                if rest.count(".") >= depth:
-                    continue
-            selected.append(name)
-        found_prefixes = sorted({n.rpartition(".")[0] for n in selected if "." in n})
-        result_cls = get_message("rcl_interfaces/msg/ListParametersResult")
-        response.result = result_cls(names=selected, prefixes=found_prefixes)
+    def _describe_parameters(self, request: Any, response: Any) -> Any:
+        descriptors = []
+        for name in request.names:
+            try:
+                descriptors.append(self.node.describe_parameter(name))
+            except ParameterNotDeclaredException:
+                descriptors = []  # one unknown name: none at all, as rclpy
+                break
+        response.descriptors = descriptors
         return response
 
-    def _get(self, request: Any, response: Any) -> Any:
-        declared = self.node.get_parameters_by_prefix("")
+    def _get_parameters(self, request: Any, response: Any) -> Any:
         values = []
         for name in request.names:
-            param = declared.get(name, Parameter(name, ParameterType.NOT_SET, None))
-            values.append(param.to_msg_value())
+            try:
+                values.append(self.node.get_parameter(name).get_parameter_value())
+            except (ParameterNotDeclaredException, ParameterUninitializedException):
+                values = []
+                break
         response.values = values
         return response
 
-    def _types(self, request: Any, response: Any) -> Any:
-        declared = self.node.get_parameters_by_prefix("")
-        response.types = [int(declared[n].type_) if n in declared else 0 for n in request.names]
+    def _get_parameter_types(self, request: Any, response: Any) -> Any:
+        types: list[int] = []
+        for name in request.names:
+            try:
+                kind = self.node.get_parameter_type(name)
+            except ParameterNotDeclaredException:
+                types = []
+                break
+            types.append(getattr(kind, "value", kind))
+        response.types = types
         return response
 
-    def _set(self, request: Any, response: Any) -> Any:
-        params = [Parameter.from_msg_value(p.name, p.value) for p in request.parameters]
-        results = self.node.set_parameters(params)
-        result_cls = get_message("rcl_interfaces/msg/SetParametersResult")
-        response.results = [result_cls(successful=r.successful, reason=r.reason) for r in results]
+    def _list_parameters(self, request: Any, response: Any) -> Any:
+        try:
+            response.result = self.node.list_parameters(list(request.prefixes), int(request.depth))
+        except (TypeError, ValueError):
+            response.result = get_message("rcl_interfaces/msg/ListParametersResult")()
         return response
 
-    def _set_atomically(self, request: Any, response: Any) -> Any:
-        params = [Parameter.from_msg_value(p.name, p.value) for p in request.parameters]
-        result = self.node.set_parameters_atomically(params)
-        result_cls = get_message("rcl_interfaces/msg/SetParametersResult")
-        response.result = result_cls(successful=result.successful, reason=result.reason)
+    def _set_parameters(self, request: Any, response: Any) -> Any:
+        results = []
+        for item in request.parameters:
+            try:
+                result = self.node.set_parameters_atomically([Parameter.from_parameter_msg(item)])
+            except ParameterNotDeclaredException as exc:
+                result = result_message(False, str(exc))
+            results.append(result)
+        response.results = results
         return response
 
-    def _describe(self, request: Any, response: Any) -> Any:
-        descriptor_cls = get_message("rcl_interfaces/msg/ParameterDescriptor")
-        declared = self.node.get_parameters_by_prefix("")
-        response.descriptors = [
-            descriptor_cls(name=n, type=int(declared[n].type_) if n in declared else 0)
-            for n in request.names
-        ]
+    def _set_parameters_atomically(self, request: Any, response: Any) -> Any:
+        try:
+            response.result = self.node.set_parameters_atomically(
+                [Parameter.from_parameter_msg(item) for item in request.parameters]
+            )
+        except ParameterNotDeclaredException as exc:
+            response.result = result_message(False, str(exc))
         return response

@@ -14,9 +14,10 @@ from launchkit.ros.keyexpr import decode_attachment, encode_attachment, entity_t
 from launchkit.ros.logging import get_logger
 from launchkit.ros.msgs import deserialize, message_type_name, serialize, type_hash
 from launchkit.ros.qos import HistoryPolicy, QoSProfile
-from launchkit.ros.task import Future
+from launchkit.ros.task import Future, await_or_execute
 
 if TYPE_CHECKING:
+    from launchkit.ros.callback_groups import CallbackGroup
     from launchkit.ros.node_interface import NodeInterface
 
 
@@ -27,8 +28,18 @@ class ServiceCallError(RuntimeError):
 class _ServiceEntity:
     KIND = ""
 
-    def __init__(self, node: NodeInterface, srv_type: Any, name: str, qos: QoSProfile) -> None:
+    def __init__(
+        self,
+        node: NodeInterface,
+        srv_type: Any,
+        name: str,
+        qos: QoSProfile,
+        callback_group: CallbackGroup | None = None,
+    ) -> None:
         self.node = node
+        # before anything can arrive: the executor asks the group of every ready entity
+        self.callback_group = callback_group or node.default_callback_group
+        self.callback_group.add_entity(self)
         self.srv_type = srv_type
         self.type_name = message_type_name(srv_type)
         self.srv_name = node.resolve_service_name(name)
@@ -84,13 +95,15 @@ class Service(_ServiceEntity):
         callback: Callable[..., Any],
         qos: QoSProfile,
         raw: bool = False,
+        callback_group: CallbackGroup | None = None,
     ) -> None:
-        super().__init__(node, srv_type, name, qos)
+        super().__init__(node, srv_type, name, qos, callback_group)
         self.callback = callback
         self.raw = raw
         self._pending: deque[tuple[zenoh.Query, bytes, bytes | None]] = deque()
         self._pending_lock = threading.Lock()
-        self._scheduled = False  # a _handle_next waits in the node's work queue
+        self._scheduled = False  # the service waits in the node's work queue
+        self._executor_event = False  # an executor's handler for it is pending
         self._queryable = node.context.session.declare_queryable(
             self.key, self._on_query, complete=True
         )
@@ -104,7 +117,7 @@ class Service(_ServiceEntity):
             b"" if payload is None else payload.to_bytes(),
             None if attachment is None else attachment.to_bytes(),
         )
-        qos = self.qos_profile
+        qos = self.qos_profile.resolved()
         with self._pending_lock:
             if qos.history != HistoryPolicy.KEEP_ALL and len(self._pending) >= qos.effective_depth:
                 oldest = self._pending.popleft()[0]
@@ -117,18 +130,26 @@ class Service(_ServiceEntity):
             if self._scheduled:
                 return
             self._scheduled = True
-        self.node.post((self._handle_next, ()))
+        self.node.post(self)
 
-    def _handle_next(self) -> None:
-        # one item in the node's work queue at a time, however many requests wait
+    def _take_for_executor(self) -> Callable[[], Any] | None:
+        """The executor takes the oldest waiting request (the service stays in the node's
+        queue while more wait); the work answers it."""
         with self._pending_lock:
             if not self._pending:
                 self._scheduled = False
-                return
+                return None
             query, payload, attachment = self._pending.popleft()
             self._scheduled = bool(self._pending)
         if self._scheduled:
-            self.node.post((self._handle_next, ()))
+            self.node.post(self)
+
+        async def execute() -> None:
+            await self._handle(query, payload, attachment)
+
+        return execute
+
+    async def _handle(self, query: zenoh.Query, payload: bytes, attachment: bytes | None) -> None:
         request_info = decode_attachment(attachment)
         sequence = request_info.sequence if request_info else 0
         gid = request_info.gid if request_info else self.gid
@@ -148,9 +169,9 @@ class Service(_ServiceEntity):
         if self.raw:
             self._answer_raw(payload, reply, fail)
         else:
-            self._answer(payload, reply, fail)
+            await self._answer(payload, reply, fail)
 
-    def _answer(
+    async def _answer(
         self, payload: bytes, reply: Callable[[bytes], None], fail: Callable[[str], None]
     ) -> None:
         try:
@@ -159,7 +180,7 @@ class Service(_ServiceEntity):
             fail(f"invalid {self.type_name} request: {exc}")
             return
         try:
-            response = self.callback(request, self.srv_type.Response())
+            response = await await_or_execute(self.callback, request, self.srv_type.Response())
             if getattr(response, "_TYPE_NAME", None) != self.type_name + "_Response":
                 raise TypeError(
                     f"the callback of service '{self.srv_name}' returned "
@@ -184,7 +205,7 @@ class Service(_ServiceEntity):
             return
 
         def done(future: Future) -> None:
-            error = future.exception()
+            error = None if future.cancelled() else future.exception()
             if error is not None or future.cancelled():
                 fail(f"service '{self.srv_name}' failed: {error or 'cancelled'}")
             else:
@@ -202,18 +223,38 @@ class Service(_ServiceEntity):
 
 
 class Client(_ServiceEntity):
-    """Calls a service: ``call(req)``, ``call_async(req)``, ``wait_for_service(timeout)``."""
+    """Calls a service: ``call(req)``, ``call_async(req)``, ``wait_for_service(timeout)``.
+
+    A response completes its future as it arrives (Zenoh's thread), so ``call()`` needs no
+    executor; the client then counts as ready in its node's executor (a ``spin_once`` returns
+    for it, as rclpy's does when it takes a response), and the future's done callbacks run
+    there.
+    """
 
     KIND = "SC"
 
     def __init__(
-        self, node: NodeInterface, srv_type: Any, name: str, qos: QoSProfile, raw: bool = False
+        self,
+        node: NodeInterface,
+        srv_type: Any,
+        name: str,
+        qos: QoSProfile,
+        raw: bool = False,
+        callback_group: CallbackGroup | None = None,
     ) -> None:
-        super().__init__(node, srv_type, name, qos)
+        super().__init__(node, srv_type, name, qos, callback_group)
         self.raw = raw
+        self._executor_event = False  # an executor's handler for it is pending
+        self._responded = False  # a response arrived that no executor has taken yet
         self._sequence = 0
         self._lock = threading.Lock()
+        self._pending_requests: dict[int, Future] = {}
         self._announce()
+
+    @property
+    def service_name(self) -> str:
+        """The resolved service name."""
+        return self.srv_name
 
     def service_is_ready(self) -> bool:
         """Whether a server for this service exists now."""
@@ -229,10 +270,13 @@ class Client(_ServiceEntity):
         context.graph.wait_for(lambda: self.service_is_ready() or not context.ok(), timeout_sec)
         return self.service_is_ready()
 
-    def call_async(self, request: Any, timeout_sec: float = 60.0) -> Future:
-        """Send ``request``; the future completes with the response (or an exception).
+    def call_async(self, request: Any, timeout_sec: float | None = None) -> Future:
+        """Send ``request``; the future completes with the response.
 
-        A raw client (``raw=True``) sends CDR bytes and completes with the response's bytes.
+        ``timeout_sec`` (a launchkit extension) fails the future with
+        :class:`ServiceCallError` when no answer came in time; without it the call waits as
+        long as a server may answer. A server's error also fails it. A raw client
+        (``raw=True``) sends CDR bytes and completes with the response's bytes.
         """
         if self.raw:
             if not isinstance(request, (bytes, bytearray, memoryview)):
@@ -245,16 +289,21 @@ class Client(_ServiceEntity):
             )
         else:
             payload = serialize(request, self.type_name + "_Request")
-        future = Future(lambda item: self.node.post(item))
+        future = Future(executor=self.node.scheduler)
         if self.node.context.refused is not None:  # nothing leaves for another user's router
             future.set_exception(ServiceCallError(self.node.context.refused.message))
             return future
         with self._lock:
             self._sequence += 1
-            attachment = encode_attachment(self._sequence, time.time_ns(), self.gid)
+            sequence = self._sequence
+            self._pending_requests[sequence] = future
+            attachment = encode_attachment(sequence, time.time_ns(), self.gid)
         response_type = self.type_name + "_Response"
 
         def on_reply(reply: zenoh.Reply) -> None:
+            with self._lock:
+                if self._pending_requests.pop(sequence, None) is not future:
+                    return  # given up (remove_pending_request), or answered already
             if reply.ok is not None:
                 try:
                     data = reply.ok.payload.to_bytes()
@@ -265,12 +314,14 @@ class Client(_ServiceEntity):
                 future.set_exception(
                     ServiceCallError(reply.err.payload.to_string() or "service error")
                 )
+            self._ready()
 
         def on_done() -> None:
-            if not future.done():
-                future.set_exception(
-                    ServiceCallError(f"no response from service '{self.srv_name}'")
-                )
+            with self._lock:
+                if self._pending_requests.pop(sequence, None) is not future:
+                    return
+            future.set_exception(ServiceCallError(f"no response from service '{self.srv_name}'"))
+            self._ready()
 
         self.node.context.session.get(
             self.key,
@@ -278,18 +329,46 @@ class Client(_ServiceEntity):
             target=zenoh.QueryTarget.ALL_COMPLETE,
             payload=payload,
             attachment=attachment,
-            timeout=timeout_sec,
+            timeout=_FOREVER if timeout_sec is None else timeout_sec,
         )
         return future
 
+    def _ready(self) -> None:
+        with self._lock:
+            if self._responded:
+                return
+            self._responded = True
+        self.node.post(self)
+
+    def _take_for_executor(self) -> Callable[[], Any] | None:
+        """The response was delivered already: nothing left to run."""
+        with self._lock:
+            self._responded = False
+        return None
+
     def call(self, request: Any, timeout_sec: float | None = None) -> Any:
-        """Send ``request`` and block for the response (works with or without a spinner)."""
-        future = self.call_async(request, timeout_sec or 60.0)
+        """Send ``request`` and block for the response; None after ``timeout_sec`` (rclpy's).
+
+        Works with or without a spinning executor (the response does not need one).
+        """
+        future = self.call_async(request)
         if not future.wait(timeout_sec):
-            future.cancel()
-            raise ServiceCallError(f"service '{self.srv_name}' did not answer in {timeout_sec} s")
+            self.remove_pending_request(future)
+        exception = future.exception()
+        if exception is not None:
+            raise exception
         return future.result()
+
+    def remove_pending_request(self, future: Future) -> None:
+        """Forget the request of ``future``: its response, if any, is dropped."""
+        with self._lock:
+            for sequence, pending in list(self._pending_requests.items()):
+                if pending is future:
+                    del self._pending_requests[sequence]
 
     def destroy(self) -> None:
         """Forget the client."""
         self._undeclare(None)
+
+
+_FOREVER = 10.0 * 365 * 24 * 3600  # Zenoh's queries need a deadline; rclpy's calls have none

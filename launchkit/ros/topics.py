@@ -12,11 +12,14 @@ from typing import TYPE_CHECKING, Any, TypedDict
 import zenoh
 from zenoh import ext
 
+from launchkit.ros.event_handler import MatchedEvent
 from launchkit.ros.keyexpr import decode_attachment, encode_attachment, entity_token, gid_of
 from launchkit.ros.msgs import codec, message_type_name, type_hash
 from launchkit.ros.qos import DurabilityPolicy, HistoryPolicy, QoSProfile, ReliabilityPolicy
+from launchkit.ros.task import await_or_execute
 
 if TYPE_CHECKING:
+    from launchkit.ros.callback_groups import CallbackGroup
     from launchkit.ros.node_interface import NodeInterface
 
 
@@ -59,12 +62,24 @@ class _Entity:
 
     KIND = ""
 
-    def __init__(self, node: NodeInterface, msg_type: Any, topic: str, qos: QoSProfile) -> None:
+    def __init__(
+        self,
+        node: NodeInterface,
+        msg_type: Any,
+        topic: str,
+        qos: QoSProfile,
+        callback_group: CallbackGroup | None = None,
+    ) -> None:
         self.node = node
         self.msg_type = msg_type
         self.type_name = message_type_name(msg_type)
         self.topic_name = node.resolve_topic_name(topic)
         self.qos_profile = qos
+        # before anything can arrive: the executor asks the group of every ready entity
+        self.callback_group = callback_group or node.default_callback_group
+        self.callback_group.add_entity(self)
+        self.event_handlers: list[MatchedEvent] = []
+        qos = qos.resolved()  # what goes on the wire: rmw_zenoh's defaults for the rest
         self.type_hash = type_hash(self.type_name)
         self.key = node.topic_key(self.topic_name, self.type_name, self.type_hash)
         self.entity_id = node.context.next_entity_id()
@@ -89,10 +104,23 @@ class _Entity:
     def _announce(self) -> None:
         self._token = self.node.context.session.liveliness().declare_token(self.token_key)
         # follow the graph from the first publisher or subscription on, so that graph queries
-        # soon after (get_node_names, get_subscription_count) find it already filled
-        _ = self.node.context.graph
+        # soon after (get_node_names, get_subscription_count) find it already filled; not in a
+        # command's client session (every node has a /parameter_events publisher), where it
+        # would answer the command's own one-off graph queries only in part
+        if not self.node.context.client:
+            _ = self.node.context.graph
+
+    def _set_event_callbacks(self, callbacks: Any) -> None:
+        """Start the event handlers ``callbacks`` asks for (the matched event)."""
+        matched = getattr(callbacks, "matched", None)
+        if matched is not None:
+            peer = "MS" if self.KIND == "MP" else "MP"
+            self.event_handlers.append(MatchedEvent(self, matched, peer, self.node.post))
 
     def _undeclare(self, *entities: Any) -> None:
+        for handler in self.event_handlers:
+            handler.destroy()
+        self.event_handlers.clear()
         for entity in (*entities, self._token):
             if entity is None:
                 continue
@@ -108,8 +136,16 @@ class Publisher(_Entity):
 
     KIND = "MP"
 
-    def __init__(self, node: NodeInterface, msg_type: Any, topic: str, qos: QoSProfile) -> None:
-        super().__init__(node, msg_type, topic, qos)
+    def __init__(
+        self,
+        node: NodeInterface,
+        msg_type: Any,
+        topic: str,
+        qos: QoSProfile,
+        callback_group: CallbackGroup | None = None,
+    ) -> None:
+        super().__init__(node, msg_type, topic, qos, callback_group)
+        qos = qos.resolved()
         session = node.context.session
         self._sequence = 0
         self._lock = threading.Lock()
@@ -216,8 +252,10 @@ class Subscription(_Entity):
         callback: Callable[..., Any],
         qos: QoSProfile,
         raw: bool = False,
+        callback_group: CallbackGroup | None = None,
     ) -> None:
-        super().__init__(node, msg_type, topic, qos)
+        super().__init__(node, msg_type, topic, qos, callback_group)
+        qos = qos.resolved()
         self.callback = callback
         self.raw = raw
         self._with_info = _wants_message_info(callback)
@@ -225,8 +263,9 @@ class Subscription(_Entity):
         self._queue: deque[tuple[bytes, bytes | None, int]] = deque()
         self._queue_lock = threading.Lock()
         self._depth = None if qos.history == HistoryPolicy.KEEP_ALL else qos.effective_depth
-        self._scheduled = False  # a take is waiting in the node's work queue
-        self._take_work = (self._take, ())  # built once: posted for every message
+        self._scheduled = False  # the subscription waits in the node's work queue
+        self._executor_event = False  # an executor's handler for it is pending
+        self.on_arrival: Callable[[], None] | None = None  # told of every message (any thread)
         self.dropped = 0  # messages pushed out of a full queue (launchkit extension)
         session = node.context.session
         reliable = qos.reliability == ReliabilityPolicy.RELIABLE
@@ -272,28 +311,42 @@ class Subscription(_Entity):
                 self._queue.popleft()
                 self.dropped += 1
             self._queue.append(item)
-            if self._scheduled:
-                return
-            self._scheduled = True
-        self.node.post(self._take_work)
+            scheduled, self._scheduled = self._scheduled, True
+        if self.on_arrival is not None:
+            self.on_arrival()
+        if not scheduled:
+            self.node.post(self)
 
-    def _take(self) -> None:
-        """The spinning thread: deliver the oldest queued message (and come back for the
-        next after the work already waiting)."""
+    def take_message(self) -> tuple[Any, ...] | None:
+        """The callback's arguments for the oldest queued message (None: none waits)."""
         with self._queue_lock:
             if not self._queue:
                 self._scheduled = False
-                return
+                return None
             item = self._queue.popleft()
             self._scheduled = more = bool(self._queue)
         if more:
-            self.node.post(self._take_work)
-        self._deliver(*item)
+            self.node.post(self)  # back in the queue, behind the work already waiting
+        return self._take_message(*item)
 
-    def _deliver(self, payload: bytes, attachment: bytes | None, received: int = 0) -> None:
+    def _take_for_executor(self) -> Callable[[], Any] | None:
+        """The executor takes the oldest queued message."""
+        args = self.take_message()
+        if args is None:
+            return None
+        callback = self.callback
+
+        async def execute() -> None:
+            await await_or_execute(callback, *args)
+
+        return execute
+
+    def _take_message(
+        self, payload: bytes, attachment: bytes | None, received: int = 0
+    ) -> tuple[Any, ...] | None:
+        """The callback's arguments for one received message (None: not a valid one)."""
         # as rmw_zenoh, every publisher feeds every subscription whatever their QoS (its graph
         # cache does not enforce DDS's compatibility rules)
-        decoded = decode_attachment(attachment) if self._with_info else None
         message: Any = payload
         if not self.raw:
             try:
@@ -304,21 +357,19 @@ class Subscription(_Entity):
                     f"{self.type_name}: {exc}",
                     throttle_duration_sec=5.0,
                 )
-                return
+                return None
         if not self._with_info:
-            self.callback(message)
-            return
+            return (message,)
+        decoded = decode_attachment(attachment)
         self._received += 1
-        self.callback(
-            message,
-            MessageInfo(
-                source_timestamp=decoded.timestamp_ns if decoded else 0,
-                received_timestamp=received,
-                publication_sequence_number=decoded.sequence if decoded else 0,
-                reception_sequence_number=self._received,
-                publisher_gid=decoded.gid if decoded else b"",
-            ),
+        info = MessageInfo(
+            source_timestamp=decoded.timestamp_ns if decoded else 0,
+            received_timestamp=received,
+            publication_sequence_number=decoded.sequence if decoded else 0,
+            reception_sequence_number=self._received,
+            publisher_gid=decoded.gid if decoded else b"",
         )
+        return (message, info)
 
     def destroy(self) -> None:
         """Undeclare the subscriber and its token."""

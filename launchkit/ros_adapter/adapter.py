@@ -16,7 +16,7 @@ from launchkit.errors import LaunchkitError
 from launchkit.ros.context import Context, NotInitializedError
 from launchkit.ros.executor import SingleThreadedExecutor
 from launchkit.ros.node import Node
-from launchkit.ros.params import Parameter, load_params_file
+from launchkit.ros.params import Parameter, load_params_file, parameter_from_value
 
 LOAD_LOGGER = "launch_ros.actions.load_composable_nodes"
 LIFECYCLE_LOGGER = "launch_ros.actions.lifecycle_node"
@@ -158,7 +158,7 @@ class RosAdapter:
         """Stop the workers and leave the graph."""
         self._closed.set()
         if self._context is not None:
-            self._context.shutdown()
+            self._context.try_shutdown()
         for thread in self._threads:
             thread.join(timeout=5)
         self._threads.clear()
@@ -172,7 +172,7 @@ def _parameters(request: LoadRequest) -> list[Parameter]:
             values.update(load_params_file(item, fqn or "/"))
         else:
             values[item[0]] = item[1]
-    return [Parameter(name, value=value) for name, value in values.items()]
+    return [parameter_from_value(name, value) for name, value in values.items()]
 
 
 def _load_message(srv: Any, request: LoadRequest) -> Any:
@@ -183,7 +183,7 @@ def _load_message(srv: Any, request: LoadRequest) -> Any:
 
     try:
         parameters = _parameters(request)
-        extra = [Parameter(name, value=value) for name, value in request.extra_arguments]
+        extra = [parameter_from_value(name, value) for name, value in request.extra_arguments]
     except LaunchkitError as error:
         raise RuntimeError(error.message) from None
     return srv.Request(

@@ -67,10 +67,11 @@ def cli_node(args: argparse.Namespace, name: str | None = None) -> Iterator[Node
                 name or f"_launchkit_cli_{os.getpid()}",
                 context=context,
                 start_parameter_services=False,
+                enable_rosout=False,
             )
         yield node
     finally:
-        context.shutdown()
+        context.try_shutdown()
 
 
 def graph_tokens(node: Node, timeout: float = 2.0) -> list[Token]:

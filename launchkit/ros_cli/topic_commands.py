@@ -227,7 +227,7 @@ def endpoint_text(token: Token, endpoint_type: str) -> str:
     """One endpoint as rclpy's ``TopicEndpointInfo`` prints it (``topic info -v``)."""
     from launchkit.ros.qos import HistoryPolicy, QoSProfile
 
-    qos = token.qos or QoSProfile()
+    qos = token.qos or QoSProfile(depth=10)
     gid = ".".join(f"{b:02x}" for b in token.gid)
     depth = (
         f"{qos.history.name} ({qos.depth})"

@@ -12,7 +12,6 @@ so the loop is unit-tested without real processes (``tests/engine/test_superviso
 
 Evaluating actions (the first pass, a timer) may block, in a ``$(command)`` say; there a signal
 interrupts the evaluation (:meth:`SignalPipe.interrupting`), and is then handled as always.
-
 Processes of the launch may also ask the supervisor, over the child-request socket it serves on
 the same loop (:mod:`launchkit.runtime.child_requests`), to start processes for them; those are
 supervised exactly like declared ones and stopped when their owner's connection closes.
@@ -31,6 +30,7 @@ from launchkit.description.events import ExecutionComplete
 from launchkit.description.process_spec import ProcessSpec
 from launchkit.envvars import RUN_TMPDIR
 from launchkit.errors import LaunchkitError
+from launchkit.ros.face import child_environment
 from launchkit.runtime.announcements import Announcements
 from launchkit.runtime.child_requests import ChildRequests, RequestError
 from launchkit.runtime.cleanup import LaunchCleanup
@@ -292,14 +292,15 @@ class Supervisor:
     # -- processes ---------------------------------------------------------------------------
 
     def _start_new(self, spec: ProcessSpec) -> None:
-        if spec.is_node and self.network is not None:
-            try:
+        try:  # which rclpy it gets (launchkit's face first on PYTHONPATH?), where the router is
+            spec.env.update(child_environment(spec.cmd, spec.env))
+            if spec.is_node and self.network is not None:
                 spec.env.update(self.network.ensure(self))
-            except LaunchkitError as error:
-                self.fail(error)
-                return
-        elif self.network is not None:
-            spec.env.update(self.network.known())
+            elif self.network is not None:
+                spec.env.update(self.network.known())
+        except LaunchkitError as error:
+            self.fail(error)
+            return
         process = self._managed(spec)
         self.processes.append(process)
         self._spawn(process)

@@ -3,7 +3,8 @@
 Each node module ends with ``_entry.run(main, "program")``, the one ``__main__`` wrapper: its
 ``main(argv)`` raises a :class:`launchkit.errors.UserError` (or a subclass) for a bad command
 line, parameter or file, which becomes one line and exit status 2 (no traceback); Ctrl-C is a
-clean exit; the process exits promptly (:mod:`launchkit._exit`). Inside ``main``, a node's ROS
+clean exit, and so is SIGTERM (rclpy's ``ExternalShutdownException`` from a spinning executor);
+the process exits promptly (:mod:`launchkit._exit`). Inside ``main``, a node's ROS
 set-up and teardown is :func:`ros_node` (or :func:`spin`, for a node that only needs spinning).
 """
 
@@ -29,8 +30,10 @@ def run(main: Callable[[list[str]], int], program: str) -> NoReturn:
     """Run ``main(sys.argv)``; report a launchkit error as ``program: error: ...``, no traceback.
 
     Then exit promptly (see :mod:`launchkit._exit`) with ``main``'s status, the error's (2 for
-    a user mistake), or 0 after Ctrl-C, also one that came while the node's modules were
-    imported (:mod:`launchkit.runtime.startup_sigint`).
+    a user mistake), or 0 after Ctrl-C (``KeyboardInterrupt``, also one that came while the
+    node's modules were imported: :mod:`launchkit.runtime.startup_sigint`) or SIGTERM (the
+    spinning executor's ``ExternalShutdownException``): a stop request is a normal end for a
+    stock node.
     """
     try:
         release_sigint()  # a Ctrl-C held while the node's modules were imported lands here
@@ -38,7 +41,7 @@ def run(main: Callable[[list[str]], int], program: str) -> NoReturn:
     except LaunchkitError as exc:
         print(f"{program}: {exc.format()}", file=sys.stderr, flush=True)
         status = exc.exit_status
-    except KeyboardInterrupt:
+    except (KeyboardInterrupt, ros.ExternalShutdownException):
         status = 0
     exit_promptly(status)
 
@@ -69,7 +72,8 @@ def spin(argv: list[str], name: str, setup: Callable[[ros.Node], object], **opti
 
 
 def shutdown_within(seconds: float) -> None:
-    """``ros.shutdown()``, but exit (status 0) anyway if it has not returned in ``seconds``.
+    """``ros.try_shutdown()`` (a signal may have shut ROS down already), but exit (status 0)
+    anyway if it has not returned in ``seconds``.
 
     A node process must never outlive its supervisor's stop request because closing the
     transport blocked; the supervisor's SIGKILL may not come if the supervisor itself is gone.
@@ -78,7 +82,7 @@ def shutdown_within(seconds: float) -> None:
 
     def _close() -> None:
         try:
-            ros.shutdown()
+            ros.try_shutdown()
         finally:
             done.set()
 

@@ -29,7 +29,7 @@ class TopicProbe:
     def close(self) -> None:
         """Leave the network (closes the Zenoh session)."""
         self.node.destroy_node()
-        self.context.shutdown()
+        self.context.try_shutdown()
 
     def expect(
         self,

@@ -39,7 +39,7 @@ def make_bag(
     for topic, stamp, message in messages:
         if topic not in topics:
             name = message._TYPE_NAME
-            qos = qos_profile_latched if topic in latched else QoSProfile()
+            qos = qos_profile_latched if topic in latched else QoSProfile(depth=10)
             record = TopicRecord(topic, name, type_hash(name), [to_bag_qos(qos)])
             topics[topic] = writer.add_topic(record, message_definition(name))
         writer.write(topics[topic], stamp, serialize(message))

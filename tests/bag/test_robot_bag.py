@@ -4,7 +4,6 @@ the same messages, in the same order, with the same stamps."""
 
 from __future__ import annotations
 
-import dataclasses
 import os
 import sys
 from collections import defaultdict
@@ -80,7 +79,7 @@ def test_the_robot_bag_replays_the_same_messages_in_order(router: str, robot_bag
             offered = offer_for_recorded(topic, ext.offered_qos_profiles, print)
             # a queue deep enough for the whole bag: a listener slowed by a busy machine must
             # not drop the oldest messages (KEEP_LAST) while the player runs at twice the rate
-            qos = dataclasses.replace(offered, depth=max(offered.depth, len(recorded)))
+            qos = offered.replace(depth=max(offered.depth, len(recorded)))
 
             def keep(data: bytes, info: MessageInfo, topic: str = topic) -> None:
                 received.append((info["source_timestamp"], topic, data))

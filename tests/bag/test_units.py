@@ -26,10 +26,10 @@ LATCHED, VOLATILE = DurabilityPolicy.TRANSIENT_LOCAL, DurabilityPolicy.VOLATILE
 @pytest.mark.parametrize(
     ("offers", "reliability", "durability", "warnings"),
     [
-        ([QoSProfile(), QoSProfile(depth=1)], RELIABLE, VOLATILE, 0),
+        ([QoSProfile(depth=10), QoSProfile(depth=1)], RELIABLE, VOLATILE, 0),
         ([qos_profile_latched, qos_profile_latched], RELIABLE, LATCHED, 0),
-        ([qos_profile_latched, QoSProfile()], RELIABLE, VOLATILE, 1),
-        ([qos_profile_sensor_data, QoSProfile()], BEST_EFFORT, VOLATILE, 1),
+        ([qos_profile_latched, QoSProfile(depth=10)], RELIABLE, VOLATILE, 1),
+        ([qos_profile_sensor_data, QoSProfile(depth=10)], BEST_EFFORT, VOLATILE, 1),
     ],
 )
 def test_the_recorder_subscribes_as_rosbag2_adapts_to_offers(
@@ -50,7 +50,7 @@ def test_the_player_offers_what_was_recorded_or_the_default() -> None:
     sensor = offer_for_recorded("/t", [to_bag_qos(qos_profile_sensor_data)], said.append)
     assert sensor.reliability == BEST_EFFORT
     assert not said
-    mixed = [to_bag_qos(qos_profile_latched), to_bag_qos(QoSProfile())]
+    mixed = [to_bag_qos(qos_profile_latched), to_bag_qos(QoSProfile(depth=10))]
     assert offer_for_recorded("/t", mixed, said.append) == QoSProfile(depth=10)
     assert len(said) == 1 and "Not all original publishers" in said[0]
 

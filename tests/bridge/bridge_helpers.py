@@ -81,7 +81,11 @@ class LaunchkitPeer(_SpunNode):
         self.context = ros.Context(router=router)
         self.context.init([], domain_id)
         self.node = ros.Node(name, context=self.context)
-        self._spin_in_a_thread(ros.Executor(context=self.context))
+        self._spin_in_a_thread(ros.SingleThreadedExecutor(context=self.context))
+
+    def topics(self) -> dict[str, list[str]]:
+        """launchkit's graph's topics and types (the node's own included)."""
+        return dict(self.node.get_topic_names_and_types())
 
     def close(self) -> None:
         """Stop spinning and close the session."""

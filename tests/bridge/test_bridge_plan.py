@@ -49,7 +49,7 @@ def test_mirrored_qos_is_what_every_publisher_can_feed() -> None:
 
 
 def test_a_topic_with_two_types_is_skipped_with_the_reason() -> None:
-    zenoh = _side(x=TopicEnds({STRING}, [QoSProfile()]))
+    zenoh = _side(x=TopicEnds({STRING}, [QoSProfile(depth=10)]))
     dds = _side(x=TopicEnds({"std_msgs/msg/Int32"}, [], 1))
     result = plan(zenoh, dds, NameFilter())
     assert not result.topics and "more than one type" in result.skipped["/x"]

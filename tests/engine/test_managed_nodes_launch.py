@@ -34,8 +34,10 @@ ros.init(sys.argv)
 node = Talker('talker')
 try:
     ros.spin(node)
+except (KeyboardInterrupt, ros.ExternalShutdownException):
+    pass
 finally:
-    ros.shutdown()
+    ros.try_shutdown()
 """
 
 LIFECYCLE_LAUNCH = """

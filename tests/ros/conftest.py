@@ -38,4 +38,4 @@ def contexts(router: str) -> Iterator[Callable[..., Context]]:
         yield make
     finally:
         for context in made:
-            context.shutdown()
+            context.try_shutdown()

@@ -232,7 +232,8 @@ def test_doctor_counts_checks_as_ros2_doctor_does() -> None:
 
 def test_doctor_lists_the_topics_of_a_running_graph(graph: list[Child]) -> None:
     report = launchkit("doctor", "--report").stdout
+    # every node publishes /rosout, as in ROS 2: knobs and action_graph's own node
     assert (
-        "topic               : /rosout\npublisher count     : 1\nsubscriber count    : 0\n"
+        "topic               : /rosout\npublisher count     : 2\nsubscriber count    : 0\n"
     ) in report
     assert "answers)" in report and os.environ["LAUNCHKIT_ROUTER"] in report

@@ -92,7 +92,8 @@ def test_parameter_services(contexts: Callable[[], Context]) -> None:
         lister = other.create_client(ListParameters, "/driver/list_parameters")
         assert lister.wait_for_service(timeout_sec=10)
         names = lister.call(ListParameters.Request(), timeout_sec=10).result.names
-        assert names == ["rate", "use_sim_time", "wheel.radius"]
+        # in declaration order, as rclpy lists them (use_sim_time when the node is made)
+        assert names == ["use_sim_time", "rate", "wheel.radius"]
         setter = other.create_client(SetParameters, "/driver/set_parameters")
         assert setter.wait_for_service(timeout_sec=10)
         value = Parameter("rate", value=30).to_msg_value()

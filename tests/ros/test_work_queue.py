@@ -76,14 +76,14 @@ def test_a_blocked_wait_returns_for_an_item_or_a_wake_up() -> None:
     for timeout in (None, PATIENCE):
         waiter = threading.Thread(target=wait, args=(timeout,), daemon=True)
         waiter.start()
-        wait_until(lambda: queue._waiting == 1, PATIENCE, "the waiter to block", every=0.001)
+        wait_until(lambda: queue.bell._waiting == 1, PATIENCE, "the waiter to block", every=0.001)
         queue.put(_item("hello"))
         waiter.join(PATIENCE)
         assert not waiter.is_alive() and results.pop()[1] == ("hello",)
 
         waiter = threading.Thread(target=wait, args=(timeout,), daemon=True)
         waiter.start()
-        wait_until(lambda: queue._waiting == 1, PATIENCE, "the waiter to block", every=0.001)
+        wait_until(lambda: queue.bell._waiting == 1, PATIENCE, "the waiter to block", every=0.001)
         queue.wake()
         waiter.join(PATIENCE)
         assert not waiter.is_alive() and results.pop() is not None  # the wake-up item
@@ -102,15 +102,15 @@ def test_a_stale_wake_up_does_not_end_a_wait_early() -> None:
     """A producer that saw the spinner waiting may release after the spinner already took
     its item; the next wait must still wait for an item, not return empty-handed."""
     queue = WorkQueue()
-    queue._waiting = 1  # as if a spinner were between announcing itself and taking the item
+    queue.bell._waiting = 1  # as if a spinner were between announcing itself and taking the item
     queue.put(_item("taken"))
-    queue._waiting = 0
+    queue.bell._waiting = 0
     assert queue.get(0) is not None  # the spinner took it; the wake-up stays pending
     results: list[Any] = []
     waiter = threading.Thread(target=lambda: results.append(queue.get(PATIENCE)), daemon=True)
     waiter.start()
     wait_until(
-        lambda: queue._waiting == 1 and waiter.is_alive(),
+        lambda: queue.bell._waiting == 1 and waiter.is_alive(),
         PATIENCE,
         "the waiter to block",
         every=0.001,

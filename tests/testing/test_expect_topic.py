@@ -33,8 +33,11 @@ def tick():
 
 
 node.create_timer(0.05, tick)
-ros.spin(node)
-ros.shutdown()
+try:
+    ros.spin(node)
+except (KeyboardInterrupt, ros.ExternalShutdownException):
+    pass
+ros.try_shutdown()
 """
 
 

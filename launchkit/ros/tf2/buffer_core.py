@@ -16,7 +16,7 @@ import math
 import threading
 from typing import Any
 
-from launchkit.ros.logging import get_logger
+from launchkit.ros.logging import RcutilsLogger
 from launchkit.ros.msgs import get_message
 from launchkit.ros.tf2 import frame_report
 from launchkit.ros.tf2.exceptions import TF2Error, TransformException, exception_for
@@ -41,7 +41,7 @@ from launchkit.rotations import Quaternion, Vector, quaternion_multiply, rotate
 DEFAULT_CACHE_TIME_NS = 10 * NS_PER_SECOND
 
 # tf2 reports rejected input through rcutils' unnamed logger
-_log = get_logger("")
+_log = RcutilsLogger("")  # rclpy's get_logger refuses the empty name
 
 Pose = tuple[Quaternion, Vector, int]  # rotation, translation, the time it holds for
 

@@ -12,7 +12,8 @@ import importlib
 import threading
 from typing import Any
 
-from launchkit.ros.executor import SingleThreadedExecutor
+from launchkit.ros.executor import ExternalShutdownException
+from launchkit.ros.executors import SingleThreadedExecutor
 from launchkit.ros.msgs import get_message
 from launchkit.ros.qos import DurabilityPolicy, HistoryPolicy, QoSProfile
 
@@ -82,6 +83,8 @@ class TransformListener:
         try:
             while not self._stop.is_set() and self.node.context.ok():
                 self.executor.spin_once(timeout_sec=_SPIN_PERIOD)
+        except ExternalShutdownException:
+            pass  # the context was shut down while waiting: the thread's work is over
         finally:
             self.executor.remove_node(self.node)
 

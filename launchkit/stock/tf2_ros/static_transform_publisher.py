@@ -17,6 +17,7 @@ from typing import Any
 import launchkit.ros as ros
 from launchkit.errors import UserError
 from launchkit.ros.arguments import remove_ros_args
+from launchkit.ros.logging import RcutilsLogger
 from launchkit.ros.msgs import get_message
 from launchkit.ros.tf2 import StaticTransformBroadcaster
 from launchkit.stock import _entry
@@ -62,7 +63,7 @@ def _transform_message(node: ros.Node, given: StaticTransform) -> Any:
 
 def main(argv: list[str]) -> int:
     """Publish the transform of the command line until Ctrl-C."""
-    arguments = parse(remove_ros_args(argv)[1:], ros.get_logger("").warn)
+    arguments = parse(remove_ros_args(argv)[1:], RcutilsLogger("").warn)
     if arguments.help or arguments.transform is None:
         print(USAGE, flush=True)
         return 0

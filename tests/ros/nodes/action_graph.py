@@ -45,7 +45,7 @@ def keys(domain: int, zid: str, node_id: int, name: str, server: bool) -> list[s
                 topic,
                 type_name,
                 HASH,
-                QoSProfile(),
+                QoSProfile(depth=10),
             )
         )
     return found

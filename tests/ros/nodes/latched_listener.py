@@ -17,8 +17,11 @@ def main() -> None:
     )
     pub = node.create_publisher(String, "/status", qos)
     pub.publish(String(data="up"))
-    print("latched_listener ready", flush=True)
-    ros.spin(node)
+    try:
+        print("latched_listener ready", flush=True)
+        ros.spin(node)
+    except (KeyboardInterrupt, ros.ExternalShutdownException):
+        pass
     print("latched_listener done", flush=True)
 
 

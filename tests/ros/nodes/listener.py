@@ -9,9 +9,12 @@ def main() -> None:
     ros.init()
     node = ros.Node("listener")
     node.create_subscription(String, "chatter", lambda m: print(f"heard: {m.data}", flush=True), 10)
-    print("listener ready", flush=True)
-    ros.spin(node)
-    ros.shutdown()
+    try:
+        print("listener ready", flush=True)
+        ros.spin(node)
+    except (KeyboardInterrupt, ros.ExternalShutdownException):
+        pass
+    ros.try_shutdown()
     print("listener done", flush=True)
 
 

@@ -16,10 +16,13 @@ def main() -> None:
         pub.publish(String(data=f"hello {count[0]}"))
 
     node.create_timer(0.02, tick)
-    print("talker ready", flush=True)
-    ros.spin(node)
+    try:  # Ctrl-C may come at any point from here: the node ends normally, as an rclpy node
+        print("talker ready", flush=True)
+        ros.spin(node)
+    except (KeyboardInterrupt, ros.ExternalShutdownException):
+        pass
     node.destroy_node()
-    ros.shutdown()
+    ros.try_shutdown()
     print("talker done", flush=True)
 
 

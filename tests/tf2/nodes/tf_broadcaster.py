@@ -34,9 +34,12 @@ def main() -> None:
         moving.sendTransform(base)
 
     node.create_timer(0.02, tick)
-    print("static sent", flush=True)
-    rclpy.spin(node)
-    rclpy.shutdown()
+    try:  # Ctrl-C ends it (KeyboardInterrupt, as rclpy raises it)
+        print("static sent", flush=True)
+        rclpy.spin(node)
+    except KeyboardInterrupt:
+        pass
+    rclpy.try_shutdown()
 
 
 if __name__ == "__main__":

@@ -40,9 +40,13 @@ def main() -> None:
         buffer.lookup_transform("odom", "gripper", Time(), Duration(seconds=0.5))
     except LookupException as error:
         print(f"gave up after {time.monotonic() - started:.3f} s: {error}")
-    print("done", flush=True)
+    try:  # waits for Ctrl-C, which ends it (KeyboardInterrupt, as rclpy raises it)
+        print("done", flush=True)
+        rclpy.spin(node)
+    except KeyboardInterrupt:
+        pass
     node.destroy_node()
-    rclpy.shutdown()
+    rclpy.try_shutdown()
 
 
 if __name__ == "__main__":

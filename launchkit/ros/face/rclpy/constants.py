@@ -1,0 +1,5 @@
+"""``rclpy.constants``."""
+
+S_TO_NS = 1000 * 1000 * 1000
+
+__all__ = ["S_TO_NS"]

@@ -1,0 +1,5 @@
+"""``rclpy.impl.rcutils_logger``: the logger class."""
+
+from launchkit.ros.logging import RcutilsLogger
+
+__all__ = ["RcutilsLogger"]

@@ -1,0 +1,5 @@
+"""``rclpy.publisher``: publishers."""
+
+from launchkit.ros.topics import Publisher
+
+__all__ = ["Publisher"]

@@ -1,0 +1,5 @@
+"""``rclpy.service``: service servers."""
+
+from launchkit.ros.services import Service
+
+__all__ = ["Service"]

@@ -1,0 +1,5 @@
+"""``rclpy.subscription``: subscriptions."""
+
+from launchkit.ros.topics import MessageInfo, Subscription
+
+__all__ = ["MessageInfo", "Subscription"]
