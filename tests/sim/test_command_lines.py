@@ -15,6 +15,7 @@ from launchkit.stock.gazebo_ros.camera_node import CameraNodeParams
 from launchkit.stock.gazebo_ros.plugin_processes import (
     CAMERA_MODULE,
     DIFF_DRIVE_MODULE,
+    PluginProcesses,
     plugin_command,
 )
 from launchkit.stock.gazebo_ros.server_options import UsageError, parse_server_args
@@ -150,3 +151,19 @@ def test_camera_child_command_line(tmp_path: Path) -> None:
     ]  # the remapping is already in the camera's topic names (CameraConfig)
     values = yaml.safe_load(params_file.read_text())["/**"]["ros__parameters"]
     assert values == {"entity": "bot", **params.as_parameters()}
+
+
+def test_a_launch_keeps_the_plugin_parameter_files_for_the_launcher_to_remove(
+    tmp_path: Path, monkeypatch: pytest.MonkeyPatch
+) -> None:
+    # A camera node the launcher starts just before a Ctrl-C reads its file after the server
+    # has stopped: under a launch the files stay until the launcher removes its folder.
+    monkeypatch.setenv("LAUNCHKIT_RUN_TMPDIR", str(tmp_path))
+    in_launch = PluginProcesses(log=print)
+    assert in_launch._folder.parent == tmp_path
+    in_launch.stop()
+    assert in_launch._folder.is_dir()
+    monkeypatch.delenv("LAUNCHKIT_RUN_TMPDIR")
+    alone = PluginProcesses(log=print)
+    alone.stop()
+    assert not alone._folder.exists()

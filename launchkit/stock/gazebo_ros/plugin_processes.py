@@ -23,6 +23,7 @@ from __future__ import annotations
 import contextlib
 import ctypes
 import os
+import shutil
 import signal
 import subprocess
 import sys
@@ -57,14 +58,21 @@ def _die_with_parent() -> None:
         ctypes.CDLL(None, use_errno=True).prctl(_PR_SET_PDEATHSIG, signal.SIGTERM)
 
 
-def _plugin_folder() -> tempfile.TemporaryDirectory[str]:
+def _plugin_folder() -> Path:
     """Where the plugin nodes' parameter files go: in the launch's private folder under
-    ``launchkit run`` (its orphan guard removes it even if everything is SIGKILLed), else in
-    the system's temporary folder."""
+    ``launchkit run``, else in the system's temporary folder."""
     launch_folder = os.environ.get(RUN_TMPDIR)
     if launch_folder and os.path.isdir(launch_folder):
-        return tempfile.TemporaryDirectory(prefix="gazebo-", dir=launch_folder)
-    return tempfile.TemporaryDirectory(prefix="launchkit-gazebo-")
+        return Path(tempfile.mkdtemp(prefix="gazebo-", dir=launch_folder))
+    return Path(tempfile.mkdtemp(prefix="launchkit-gazebo-"))
+
+
+def _owned_by_the_launch(folder: Path) -> bool:
+    """True when ``folder`` is in the launch's private folder: the launcher removes it after
+    its last process ended (its orphan guard even if everything is SIGKILLed), so a plugin node
+    it started just before a Ctrl-C still finds its file after the server is gone."""
+    launch_folder = os.environ.get(RUN_TMPDIR)
+    return bool(launch_folder) and folder.parent == Path(launch_folder)
 
 
 def plugin_command(
@@ -111,13 +119,13 @@ class PluginProcesses:
 
     log: Callable[[str], object]
     children: dict[str, list[Child]] = field(default_factory=dict)
-    _tmp: tempfile.TemporaryDirectory[str] = field(default_factory=_plugin_folder)
+    _folder: Path = field(default_factory=_plugin_folder)
     _launcher: SupervisorClient | None = None
     _asked_launcher: bool = False
 
     def start_diff_drive(self, entity: str, plugin: PluginSpec, params: DiffDriveParams) -> None:
         """Start the diff drive node of ``plugin`` for ``entity``."""
-        params_file = Path(self._tmp.name) / f"{entity}-{plugin.name}.yaml"
+        params_file = self._folder / f"{entity}-{plugin.name}.yaml"
         parameters = params.as_parameters()
         argv = plugin_command(
             DIFF_DRIVE_MODULE, entity, plugin, parameters, params_file, remap=True
@@ -154,7 +162,7 @@ class PluginProcesses:
 
     def start_camera(self, entity: str, plugin: PluginSpec, params: CameraNodeParams) -> None:
         """Start the camera node of ``plugin`` for ``entity`` (it renders in its own process)."""
-        params_file = Path(self._tmp.name) / f"{entity}-{plugin.name}.yaml"
+        params_file = self._folder / f"{entity}-{plugin.name}.yaml"
         parameters = params.as_parameters()
         argv = plugin_command(CAMERA_MODULE, entity, plugin, parameters, params_file, remap=False)
         self._start_child(entity, plugin.name, argv)
@@ -190,14 +198,16 @@ class PluginProcesses:
         self._stop(self.children.pop(entity, []))
 
     def stop(self) -> None:
-        """Stop every child, close the launcher connection, remove the parameter files."""
+        """Stop every child, close the launcher connection, remove the parameter files (the
+        launcher removes them when it started the children: see :func:`_owned_by_the_launch`)."""
         everything = [c for children in self.children.values() for c in children]
         self.children.clear()
         self._stop(everything)
         if self._launcher is not None:
             self._launcher.close()  # the launcher would stop what is left of them now anyway
             self._launcher = None
-        self._tmp.cleanup()
+        if not _owned_by_the_launch(self._folder):
+            shutil.rmtree(self._folder, ignore_errors=True)
 
     def _stop(self, children: list[Child]) -> None:
         for child in children:
