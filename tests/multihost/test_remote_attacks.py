@@ -325,6 +325,5 @@ def wait_for_lines(proc: Proc, *texts: str, timeout: float = 30.0) -> None:
 
 def _all(proc: Proc) -> list[str]:
     """Every line ``proc`` printed so far."""
-    while not proc.lines.empty():
-        proc.seen.append(proc.lines.get())
+    proc.rest()
     return proc.seen
