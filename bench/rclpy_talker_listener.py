@@ -143,9 +143,10 @@ def main() -> int:
         },
     }
     flavours["launchkit"].update(face.environment(flavours["launchkit"]))
+    now = datetime.datetime.now(datetime.timezone.utc)
     print(
         f"{platform.node()} {platform.machine()} {os.cpu_count()} cores, Python "
-        f"{platform.python_version()}, {datetime.datetime.now(datetime.timezone.utc):%Y-%m-%d %H:%M} UTC, "
+        f"{platform.python_version()}, {now:%Y-%m-%d %H:%M} UTC, "
         f"load {os.getloadavg()[0]:.1f}; {args.count} messages at {args.rate:g} Hz"
     )
     try:
