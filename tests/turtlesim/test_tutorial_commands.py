@@ -168,8 +168,11 @@ def test_draw_square_resets_and_drives_the_first_side(
     turn = square.wait_log("New goal", square.err.index(first))
     found = re.search(r"New goal \[(\S+) (\S+), 1\.570796\]$", turn)
     assert turn.startswith("[INFO] ") and found, turn
-    # where the first side ended (within 0.1 m of its goal), a quarter turn on
-    assert (float(found[1]), float(found[2])) == pytest.approx((7.544, 5.544), abs=0.12)
+    # where the first side ended, a quarter turn on: straight east, stopped once within 0.1 m
+    # of its goal (a busy machine's late stop command lets it run on a little, as in Jazzy)
+    x, y = float(found[1]), float(found[2])
+    assert y == pytest.approx(5.544445, abs=1e-3)
+    assert 7.544445 - 0.1 < x < 7.544445 + 0.5
     square.stop()
 
 

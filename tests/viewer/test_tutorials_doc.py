@@ -370,20 +370,14 @@ def wait_turtlesim(viewer: Viewer, expression: str, what: str) -> None:
 
 def turtle_moved(open_viewer: Callable[[str], Viewer], url: str) -> Viewer:
     viewer = open_viewer(url)
+    centre = int(CENTRE * 45)  # its trail starts where it stood: the pen's colour there
     wait_turtlesim(
         viewer,
         "v.panel() === 'turtlesim' && window.__turtlesim.stats.turtles.length === 1 "
-        f"&& Math.abs(window.__turtlesim.stats.turtles[0].x - {CENTRE}) > 0.5",
-        "the turtlesim tab showing turtle1 moved from the centre",
+        f"&& Math.abs(window.__turtlesim.stats.turtles[0].x - {CENTRE}) > 0.5 "
+        f"&& window.__turtlesim.pixel({centre}, {centre}).join() === '179,184,255,255'",
+        "the turtlesim tab showing turtle1 moved from the centre, its trail behind it",
     )
-    # its trail starts where it stood: the pen's colour at the centre
-    centre = int(CENTRE * 45)
-    assert viewer.page.evaluate(f"window.__turtlesim.pixel({centre}, {centre})") == [
-        179,
-        184,
-        255,
-        255,
-    ]
     return viewer
 
 
