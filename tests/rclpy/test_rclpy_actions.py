@@ -62,11 +62,11 @@ serving
 
 TWO_CLIENTS = """\
 == racer 6 (status 0)
-order 6: feedback lengths [3, 4, 5, 6, 7]
+order 6: feedback of other goals 0
 order 6: result [0, 1, 1, 2, 3, 5, 8]
 -- stderr
 == racer 9 (status 0)
-order 9: feedback lengths [3, 4, 5, 6, 7, 8, 9, 10]
+order 9: feedback of other goals 0
 order 9: result [0, 1, 1, 2, 3, 5, 8, 13, 21, 34]
 -- stderr
 server status 0

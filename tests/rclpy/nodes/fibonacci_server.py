@@ -10,6 +10,7 @@ from rclpy.action import ActionServer, CancelResponse, GoalResponse
 from rclpy.callback_groups import ReentrantCallbackGroup
 from rclpy.executors import ExternalShutdownException, MultiThreadedExecutor
 from rclpy.node import Node
+from rclpy.qos import QoSProfile
 
 UNLUCKY = 13
 UNTIL_CANCELED = 1000
@@ -60,6 +61,7 @@ def main() -> None:
         goal_callback=on_goal,
         cancel_callback=on_cancel,
         callback_group=ReentrantCallbackGroup(),
+        feedback_pub_qos_profile=QoSProfile(depth=100),  # two goals' feedback at once
     )
     print("serving", flush=True)
     try:
