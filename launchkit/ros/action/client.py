@@ -196,6 +196,9 @@ class ActionClient:
         future = Future(executor=self._node.scheduler)
 
         def answered(call: Future) -> None:
+            if call.cancelled():
+                future.cancel()
+                return
             error = call.exception()
             if error is not None:
                 future.set_exception(error)
@@ -205,7 +208,11 @@ class ActionClient:
             except RuntimeError as exc:
                 future.set_exception(exc)
 
-        self._goal_client.call_async(request).add_done_callback(answered)
+        call = self._goal_client.call_async(request)
+        # completed where the response arrives, so that its done callbacks are queued in the
+        # node's executor as rclpy queues them when it takes the response: ahead of feedback
+        # that arrives after it
+        call._add_waiter(lambda: answered(call))
         return future
 
     def send_goal(self, goal: Any, **kwargs: Any) -> Any:
