@@ -6,6 +6,7 @@ from __future__ import annotations
 import threading
 import uuid
 import weakref
+from collections import deque
 from collections.abc import Callable
 from typing import TYPE_CHECKING, Any
 
@@ -23,6 +24,10 @@ if TYPE_CHECKING:
     from launchkit.ros.callback_groups import CallbackGroup
     from launchkit.ros.node import Node
     from launchkit.ros.services import Client
+
+
+#: finished goals whose feedback callbacks an action client keeps
+_FINISHED_KEPT = 32
 
 
 class ClientGoalHandle:
@@ -112,12 +117,11 @@ class ActionClient:
         self._action_name = node.resolve_topic_name(action_name)
         self._goal_handles: dict[bytes, weakref.ref[ClientGoalHandle]] = {}
         self._feedback_callbacks: dict[bytes, Callable[..., Any]] = {}
-        # a goal's feedback callback is forgotten once its result is in and every feedback
-        # message that had arrived by then was handled (or dropped from a full queue)
+        # the goals whose result is in, oldest first: their feedback callbacks are kept a while,
+        # as feedback published before the result may still be on its way (another key, another
+        # Zenoh thread), then forgotten (rclpy forgets them with the result)
+        self._finished: deque[bytes] = deque()
         self._feedback_lock = threading.Lock()
-        self._feedback_arrived = 0
-        self._feedback_consumed = 0
-        self._forget_feedback_after: dict[bytes, int] = {}
         self._uuid_type = get_message("unique_identifier_msgs/msg/UUID")
         self._cancel_type = get_service(names.CANCEL_GOAL_TYPE)
         impl = action_type.Impl
@@ -144,7 +148,6 @@ class ActionClient:
             feedback_sub_qos_profile or QoSProfile(depth=10),
             callback_group=self.callback_group,
         )
-        self._feedback_subscription.on_arrival = self._count_feedback
         self._status_subscription = node.create_subscription(
             impl.GoalStatusMessage,
             names.part_name(self._action_name, names.STATUS),
@@ -246,34 +249,18 @@ class ActionClient:
         return _wait(self._get_result_async(goal_handle))
 
     # topics -----------------------------------------------------------------------------------
-    def _count_feedback(self) -> None:
-        with self._feedback_lock:
-            self._feedback_arrived += 1
-
     def _forget_feedback(self, goal_uuid: bytes) -> None:
-        """No more feedback for a goal whose result is in (as rclpy forgets its callback then),
-        once the feedback that arrived before the result has been handled."""
+        """A goal's result is in: forget the feedback callback of the oldest finished goal
+        beyond the last :data:`_FINISHED_KEPT`."""
         with self._feedback_lock:
-            self._forget_feedback_after[goal_uuid] = self._feedback_arrived
-        self._forget_handled()
-
-    def _forget_handled(self) -> None:
-        with self._feedback_lock:
-            consumed = self._feedback_consumed + self._feedback_subscription.dropped
-            for goal_uuid, mark in list(self._forget_feedback_after.items()):
-                if mark <= consumed:
-                    del self._forget_feedback_after[goal_uuid]
-                    self._feedback_callbacks.pop(goal_uuid, None)
+            self._finished.append(goal_uuid)
+            while len(self._finished) > _FINISHED_KEPT:
+                self._feedback_callbacks.pop(self._finished.popleft(), None)
 
     async def _on_feedback(self, message: Any) -> None:
         callback = self._feedback_callbacks.get(bytes(message.goal_id.uuid))
-        try:
-            if callback is not None:
-                await await_or_execute(callback, message)
-        finally:
-            with self._feedback_lock:
-                self._feedback_consumed += 1
-            self._forget_handled()
+        if callback is not None:
+            await await_or_execute(callback, message)
 
     def _on_status(self, message: Any) -> None:
         for goal_status in message.status_list:
