@@ -9,7 +9,7 @@ from __future__ import annotations
 from collections.abc import Callable
 from typing import Any
 
-from launchkit.ros.msgs import deserialize, serialize
+from launchkit.ros.msgs import serialize
 from launchkit.ros.services import Service
 
 
@@ -17,14 +17,9 @@ class DeferredService(Service):
     """Calls ``await callback(request, respond)``; ``respond(response)`` sends the answer, now
     or later (once)."""
 
-    async def _answer(
-        self, payload: bytes, reply: Callable[[bytes], None], fail: Callable[[str], None]
+    async def _respond(
+        self, request: Any, reply: Callable[[bytes], None], fail: Callable[[str], None]
     ) -> None:
-        try:
-            request = deserialize(payload, self.type_name + "_Request")
-        except Exception as exc:
-            fail(f"invalid {self.type_name} request: {exc}")
-            return
         response_type = self.type_name + "_Response"
 
         def respond(response: Any) -> None:
