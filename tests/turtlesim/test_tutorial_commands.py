@@ -128,7 +128,7 @@ def test_param_set_changes_the_background(sim: Program, probe: Any) -> None:
         launchkit("param set /turtlesim background_r 69")
 
 
-def test_teleop_key_drives_turtle1_with_the_arrow_keys(
+def test_teleop_key_drives_turtle1_with_the_arrow_and_action_keys(
     sim: Program, probe: Any, poses: Any
 ) -> None:
     got = poses("turtle1")
@@ -147,8 +147,18 @@ def test_teleop_key_drives_turtle1_with_the_arrow_keys(
         spin_until(probe, lambda: any(p.linear_velocity == 2.0 for p in got), "turtle1 forward")
         child.send("\x1b[D")  # the left arrow: turn left at scale_angular (2.0)
         spin_until(probe, lambda: any(p.angular_velocity == 2.0 for p in got), "turtle1 turning")
-        child.send("g")
-        child.expect_exact("launchkit has no action client yet")
+        child.send("r")  # rotate_absolute to 1.5708 (north)
+        spin_until(
+            probe, lambda: any(abs(p.theta - 1.5708) < 0.02 for p in got), "turtle1 facing north"
+        )
+        child.send("d")  # to 3.1416 (west), canceled by F on its way there
+        spin_until(probe, lambda: any(p.theta > 1.8 for p in got), "turtle1 turning west")
+        child.send("f")
+        spin_until(
+            probe,
+            lambda: any(p.angular_velocity == 0.0 and 1.8 < p.theta < 3.0 for p in got),
+            "turtle1 stopped short of west",
+        )
         child.send("q")
         child.expect_exact("EXIT=0", timeout=DEADLINE)
     finally:
