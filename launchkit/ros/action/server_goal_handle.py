@@ -4,12 +4,27 @@ from __future__ import annotations
 
 import threading
 from collections.abc import Callable
-from typing import TYPE_CHECKING, Any
+from typing import Any, Protocol
 
 from launchkit.ros.action.goal_state import ACTIVE, GoalEvent, GoalStatus, transition
 
-if TYPE_CHECKING:
-    from launchkit.ros.action.server import ActionServer
+
+class GoalOwner(Protocol):
+    """What a goal handle needs of the :class:`~launchkit.ros.action.server.ActionServer`
+    that made it."""
+
+    @property
+    def action_type(self) -> Any: ...
+
+    def _publish_status(self) -> None: ...
+
+    def _publish_feedback(self, message: Any) -> None: ...
+
+    def _notify_goal_done(self, goal_handle: ServerGoalHandle) -> None: ...
+
+    def _notify_execute(
+        self, goal_handle: ServerGoalHandle, execute_callback: Callable[..., Any] | None
+    ) -> None: ...
 
 
 class ServerGoalHandle:
@@ -20,7 +35,7 @@ class ServerGoalHandle:
     value is its result); every change of status is published on the action's status topic.
     """
 
-    def __init__(self, action_server: ActionServer, goal_info: Any, goal_request: Any) -> None:
+    def __init__(self, action_server: GoalOwner, goal_info: Any, goal_request: Any) -> None:
         self._action_server = action_server
         self._goal_info = goal_info
         self._goal_request = goal_request
