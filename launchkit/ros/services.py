@@ -263,6 +263,11 @@ class Client(_ServiceEntity):
             for t in self.node.context.graph.tokens("SS", self.srv_name)
         )
 
+    def requests_in_flight(self) -> int:
+        """How many requests await their reply (the lockstep waits for them)."""
+        with self._lock:
+            return len(self._pending_requests)
+
     def wait_for_service(self, timeout_sec: float | None = None) -> bool:
         """Block until a server appears; False after ``timeout_sec``, or as soon as the context
         is no longer ok (a SIGINT or SIGTERM, as rclpy's wait stops)."""

@@ -1,0 +1,152 @@
+"""A process's side of the lockstep: count what it sends and handles, say when it is idle.
+
+One :class:`Participant` per ROS context (``Context.lockstep``), made when the process runs
+with ``LAUNCHKIT_LOCKSTEP=1`` (the test plugin makes one for its own node). Publishers stamp
+their messages' attachments with the simulated time instead of the wall time; subscriptions
+count, per publisher, the last sequence number handled (taken by a callback, or pushed out of
+a full queue: either way nothing of it is left to do); executors call :meth:`on_idle` when
+they find nothing to run, and the participant then sends a :class:`~.report.Report` if its
+state changed since the last one.
+
+A message stamped with a simulated time the participant has not seen yet moves its nodes'
+clocks there before the message is queued: the authority publishes that time before anything
+can be stamped with it, so this only saves a race with ``/clock`` (a timer due at that instant
+then runs before the message's callback, whichever of the two arrived first).
+"""
+
+from __future__ import annotations
+
+import contextlib
+import os
+import threading
+import time
+from typing import TYPE_CHECKING, Any
+
+from launchkit.envvars import LOCKSTEP
+from launchkit.ros.keyexpr import decode_attachment
+from launchkit.ros.lockstep.report import REPORT_KEY, Handled, Report, Sent
+
+if TYPE_CHECKING:
+    from launchkit.ros.context import Context
+
+#: Wall seconds after which an idle participant says the same again (an authority that
+#: started listening late, or a report lost).
+HEARTBEAT = 1.0
+#: Attachment stamps below this (2001-09-09 as epoch nanoseconds) are simulated times; a
+#: process outside the lockstep stamps wall time, far above it, and does not move clocks.
+SIM_TIME_LIMIT_NS = 10**18
+
+
+def wanted() -> bool:
+    """Whether this process runs in a lockstep launch (``LAUNCHKIT_LOCKSTEP=1``)."""
+    return os.environ.get(LOCKSTEP) == "1"
+
+
+class Participant:
+    """One context's part in the lockstep (see the module's docstring)."""
+
+    def __init__(self, context: Context, name: str = "") -> None:
+        self.context = context
+        self.name = name or os.path.basename(context.argv[0] if context.argv else "python")
+        self.id = f"{os.getpid()}-{id(self):x}"
+        self._time_ns = 0
+        self._handled: dict[int, tuple[str, str, dict[str, int]]] = {}  # id(subscription) ->
+        self._lock = threading.Lock()
+        self._last: Report | None = None
+        self._sent_at = 0.0
+        context.on_shutdown(self.leave)
+
+    # what publishers and subscriptions call ------------------------------------------------
+    @property
+    def time_ns(self) -> int:
+        """The latest simulated time this participant has seen (what its messages carry)."""
+        return self._time_ns
+
+    def received(self, attachment: bytes | None) -> None:
+        """A message arrived (a Zenoh thread): follow the simulated time it carries."""
+        decoded = decode_attachment(attachment)
+        if decoded is not None and self._time_ns < decoded.timestamp_ns < SIM_TIME_LIMIT_NS:
+            self.advance_clocks(decoded.timestamp_ns)
+
+    def advance_clocks(self, time_ns: int) -> None:
+        """Move every simulated clock of the context's nodes forward to ``time_ns``."""
+        with self._lock:
+            if time_ns <= self._time_ns:
+                return
+            self._time_ns = time_ns
+        from launchkit.ros.clock import ROSClock
+
+        for node in list(self.context._nodes):
+            clock = getattr(node, "get_clock", lambda: None)()
+            if isinstance(clock, ROSClock) and clock.ros_time_is_active:
+                if clock.now().nanoseconds < time_ns:
+                    clock._set_override_ns(time_ns)
+
+    def handled(self, subscription: Any, attachment: bytes | None) -> None:
+        """``subscription`` is done with the message of ``attachment`` (taken or dropped)."""
+        decoded = decode_attachment(attachment)
+        if decoded is None:
+            return
+        with self._lock:
+            entry = self._handled.get(id(subscription))
+            if entry is None:
+                entry = (subscription.gid.hex(), subscription.topic_name, {})
+                self._handled[id(subscription)] = entry
+            seqs = entry[2]
+            publisher = decoded.gid.hex()
+            if decoded.sequence > seqs.get(publisher, 0):
+                seqs[publisher] = decoded.sequence
+
+    # what executors call ------------------------------------------------------------------
+    def on_idle(self) -> None:
+        """An executor found nothing to run: report the state if it changed."""
+        report = self.report()
+        if report.same_state(self._last) and time.monotonic() - self._sent_at < HEARTBEAT:
+            return
+        self._send(report)
+
+    def report(self, *, leaving: bool = False) -> Report:
+        """This participant's state now."""
+        now = self._time_ns
+        sent: Sent = {}
+        handled: Handled = {}
+        idle = True
+        next_ns: int | None = None
+        subscriptions: set[int] = set()
+        for node in list(self.context._nodes):
+            for publisher in getattr(node, "publishers", ()):
+                sent[publisher.gid.hex()] = (publisher.topic_name, publisher._sequence)
+            for subscription in getattr(node, "subscriptions", ()):
+                subscriptions.add(id(subscription))
+                handled[subscription.gid.hex()] = (subscription.topic_name, {})
+            work = getattr(node, "work", None)
+            if work is not None and work.pending():
+                idle = False
+            if any(client.requests_in_flight() for client in getattr(node, "clients", ())):
+                idle = False
+            for timer in getattr(node, "timers", ()):
+                remaining = timer.time_until_next_call()
+                if remaining is None or not getattr(timer.clock, "ros_time_is_active", False):
+                    continue
+                due = timer.clock.now().nanoseconds + remaining
+                if due <= now:
+                    idle = False
+                next_ns = due if next_ns is None else min(next_ns, due)
+        with self._lock:
+            for key in [k for k in self._handled if k not in subscriptions]:
+                del self._handled[key]  # destroyed subscriptions
+            for gid, topic, seqs in self._handled.values():
+                handled[gid] = (topic, dict(seqs))
+        pids = (os.getpid(), os.getppid())
+        return Report(self.id, pids, self.name, now, idle, next_ns, sent, handled, leaving)
+
+    def _send(self, report: Report) -> None:
+        key = REPORT_KEY.format(domain=self.context.domain_id, participant=self.id)
+        self._last = report
+        self._sent_at = time.monotonic()
+        with contextlib.suppress(Exception):  # the session is closing: the launcher sees the exit
+            self.context.session.put(key, report.to_bytes())
+
+    def leave(self) -> None:
+        """Tell the authority this participant is gone (its context shuts down)."""
+        self._send(self.report(leaving=True))

@@ -1,0 +1,38 @@
+"""A node whose sim-time timer publishes a count; another that prints what it hears, with its
+own clock's time. Both run on the launch's clock."""
+
+import sys
+
+import rclpy
+from rclpy.node import Node
+from std_msgs.msg import Int64
+
+
+def main() -> None:
+    rclpy.init()
+    role = sys.argv[1]
+    node = Node(role)
+    if role == "ticker":
+        pub = node.create_publisher(Int64, "ticks", 10)
+        count = [0]
+
+        def tick() -> None:
+            count[0] += 1
+            pub.publish(Int64(data=count[0]))
+            print(f"tick {count[0]} at {node.get_clock().now().nanoseconds}", flush=True)
+
+        node.create_timer(0.25, tick)
+    else:
+
+        def heard(msg: Int64) -> None:
+            print(f"heard {msg.data} at {node.get_clock().now().nanoseconds}", flush=True)
+
+        node.create_subscription(Int64, "ticks", heard, 10)
+    try:
+        rclpy.spin(node)
+    except (KeyboardInterrupt, rclpy.executors.ExternalShutdownException):
+        pass
+
+
+if __name__ == "__main__":
+    main()
