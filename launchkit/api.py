@@ -71,8 +71,6 @@ def check(
     return check_tree(path, arguments or {}, loader or LaunchLoader(), packages or PackageIndex())
 
 
-
-
 def lockstep_options(
     *, rtf: float | None = None, until: float | None = None, paused: bool = False
 ) -> ClockOptions:
@@ -82,6 +80,7 @@ def lockstep_options(
     from launchkit.ros_adapter.lockstep import ClockOptions
 
     return ClockOptions(rtf=rtf, until=until, paused=paused)
+
 
 def _start_clock(
     clock: LaunchClock, supervisor: Supervisor, network: NodeNetwork, context: LaunchContext
@@ -96,6 +95,7 @@ def _start_clock(
         context.post(lambda: supervisor.begin_shutdown("the simulated time is up (--until)"))
 
     clock.start(network.ensure(supervisor)[ROUTER], log, until)
+
 
 def _context(
     runner: Runner,

@@ -32,6 +32,11 @@ class LaunchClock:
         if self._authority is not None:
             self._authority.expect(pid, label)
 
+    def launch_ready(self) -> None:
+        """The launch started what it starts at once."""
+        if self._authority is not None:
+            self._authority.launch_ready()
+
     def exited(self, pid: int) -> None:
         """``pid`` exited."""
         if self._authority is not None:

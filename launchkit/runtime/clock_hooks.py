@@ -24,6 +24,9 @@ class ProcessWatcher(Protocol):
     def exited(self, pid: int) -> None:
         """A process exited."""
 
+    def launch_ready(self) -> None:
+        """Every process the launch starts at once has been started."""
+
 
 class ClockHooks(SupervisorHooks):
     """Tells ``clock`` of processes started and exited; passes every event on to ``inner``."""
@@ -33,7 +36,8 @@ class ClockHooks(SupervisorHooks):
         self.inner = inner or SupervisorHooks()
 
     def launch_ready(self) -> None:
-        """Passed on."""
+        """The clock may start; passed on."""
+        self.clock.launch_ready()
         self.inner.launch_ready()
 
     def launch_error(self, message: str) -> None:

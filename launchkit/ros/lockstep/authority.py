@@ -68,6 +68,7 @@ class TimeAuthority:
         self._expected: dict[int, tuple[str, float]] = {}  # pid -> (label, wall time started)
         self._changed = threading.Condition()
         self._stopped = False
+        self._started_all = False  # the launch has started what it starts at once
         self._time_ns = 0
         self._target_ns: int | None = 0 if options.paused else None
         self._until_ns = None if options.until is None else round(options.until * _NS)
@@ -106,6 +107,12 @@ class TimeAuthority:
         with self._changed:
             if not self._state.joined(pid):
                 self._expected[pid] = (label, time.monotonic())
+            self._changed.notify_all()
+
+    def launch_ready(self) -> None:
+        """The launch has started every process it starts at once: the time may go."""
+        with self._changed:
+            self._started_all = True
             self._changed.notify_all()
 
     def exited(self, pid: int) -> None:
@@ -197,12 +204,14 @@ class TimeAuthority:
             stalled_since, noted = time.monotonic(), False
 
     def _waiting_for(self) -> str | None:
+        if not self._started_all:
+            return "the launch is starting its processes"
         for pid, (label, _) in list(self._expected.items()):
             if self._state.joined(pid):
                 del self._expected[pid]
             else:
                 return f"{label} has not joined yet"
-        return self._state.waiting_for(self._time_ns, self._own_sent())
+        return self._state.waiting_for(self._time_ns, self._own_sent(), self._own_matched())
 
     def _give_up_on_late_joiners(self) -> None:
         now = time.monotonic()
@@ -252,6 +261,13 @@ class TimeAuthority:
     def _own_sent(self) -> dict[str, tuple[str, int]]:
         pub = self._clock_pub
         return {} if pub is None else {pub.gid.hex(): (pub.topic_name, pub._sequence)}
+
+    def _own_matched(self) -> dict[str, list[str]]:
+        pub = self._clock_pub
+        if pub is None:
+            return {}
+        tokens = self._context.graph.tokens("MS", pub.topic_name)
+        return {pub.gid.hex(): [t.gid.hex() for t in tokens]}
 
     def _publish_clock(self) -> None:
         self._stamp.advance_clocks(self._time_ns)

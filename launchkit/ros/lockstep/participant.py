@@ -24,7 +24,7 @@ from typing import TYPE_CHECKING, Any
 
 from launchkit.envvars import LOCKSTEP
 from launchkit.ros.keyexpr import decode_attachment
-from launchkit.ros.lockstep.report import REPORT_KEY, Handled, Report, Sent
+from launchkit.ros.lockstep.report import REPORT_KEY, Handled, Matched, Report, Sent
 
 if TYPE_CHECKING:
     from launchkit.ros.context import Context
@@ -54,6 +54,7 @@ class Participant:
         self._lock = threading.Lock()
         self._last: Report | None = None
         self._sent_at = 0.0
+        self._watching_graph = False
         context.on_shutdown(self.leave)
 
     # what publishers and subscriptions call ------------------------------------------------
@@ -138,7 +139,25 @@ class Participant:
             for gid, topic, seqs in self._handled.values():
                 handled[gid] = (topic, dict(seqs))
         pids = (os.getpid(), os.getppid())
-        return Report(self.id, pids, self.name, now, idle, next_ns, sent, handled, leaving)
+        matched = self._matched(sent) if sent else {}
+        return Report(self.id, pids, self.name, now, idle, next_ns, sent, handled, matched, leaving)
+
+    def _matched(self, sent: Sent) -> Matched:
+        """Which subscriptions (by GID) each publisher's side has discovered."""
+        graph = self.context.graph
+        if not self._watching_graph:
+            self._watching_graph = True
+            graph.add_listener(self._graph_changed)
+        by_topic: dict[str, list[str]] = {}
+        for token in graph.tokens("MS"):
+            by_topic.setdefault(token.topic, []).append(token.gid.hex())
+        return {gid: sorted(by_topic.get(topic, [])) for gid, (topic, _) in sent.items()}
+
+    def _graph_changed(self, token: Any, appeared: bool) -> None:
+        # a Zenoh thread: a subscription appeared or left; the executors report it
+        if token.kind == "MS":
+            for node in list(self.context._nodes):
+                node.wake()
 
     def _send(self, report: Report) -> None:
         key = REPORT_KEY.format(domain=self.context.domain_id, participant=self.id)

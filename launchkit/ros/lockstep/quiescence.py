@@ -17,9 +17,10 @@ since the receiver's report predates handling it, or after it, and then the send
 busy after its report. Following senders back through strictly earlier events must end at a
 first activity with no cause: there is none, so no participant is busy.
 
-A pair ``(P, S)`` counts from the step after both were first reported: a subscription that
-Zenoh had not matched yet may miss what was sent before (both exist from then on, and the
-messages of later steps reach it).
+A new subscription holds the time until every publisher on its topic has discovered it
+(its liveliness token, declared after the subscriber, has reached the publisher's process), so
+no message of a later instant can miss it. A pair ``(P, S)`` counts from the step after both
+were first reported: what ``P`` sent before may have been sent before ``S`` existed.
 """
 
 from __future__ import annotations
@@ -62,15 +63,23 @@ class Quiescence:
             sent.update(report.sent)
         return sent
 
-    def waiting_for(self, time_ns: int, extra_sent: dict[str, tuple[str, int]]) -> str | None:
-        """What keeps the time at ``time_ns`` (None: it may advance). ``extra_sent`` adds the
-        authority's own publishers (``/clock``)."""
+    def waiting_for(
+        self,
+        time_ns: int,
+        extra_sent: dict[str, tuple[str, int]],
+        extra_matched: dict[str, list[str]],
+    ) -> str | None:
+        """What keeps the time at ``time_ns`` (None: it may advance). ``extra_sent`` and
+        ``extra_matched`` add the authority's own publishers (``/clock``)."""
         for report in self.reports.values():
             if report.time_ns < time_ns:
                 return f"{report.name} has not reached the time yet"
             if not report.idle:
                 return f"{report.name} is busy"
         sent = {**self.publishers(), **extra_sent}
+        discovery = self._undiscovered(sent, extra_matched)
+        if discovery is not None:
+            return discovery
         by_topic: dict[str, list[tuple[str, int]]] = {}
         for gid, (topic, seq) in sent.items():
             by_topic.setdefault(topic, []).append((gid, seq))
@@ -80,6 +89,20 @@ class Quiescence:
                     baseline = self.baselines.get((sub_gid, pub_gid))
                     if baseline is not None and seq > baseline and handled.get(pub_gid, 0) < seq:
                         return f"{report.name} has not handled every message on {topic}"
+        return None
+
+    def _undiscovered(
+        self, sent: dict[str, tuple[str, int]], extra_matched: dict[str, list[str]]
+    ) -> str | None:
+        """A subscription that a publisher on its topic has not discovered yet, if any."""
+        matched = dict(extra_matched)
+        for report in self.reports.values():
+            matched.update(report.matched)
+        for report in self.reports.values():
+            for sub_gid, (topic, _) in report.handled.items():
+                for pub_gid, (pub_topic, _) in sent.items():
+                    if pub_topic == topic and sub_gid not in matched.get(pub_gid, ()):
+                        return f"a publisher of {topic} has not discovered {report.name} yet"
         return None
 
     def next_due(self, after_ns: int) -> int | None:

@@ -14,6 +14,8 @@ STATUS_KEY = "launchkit_lockstep/{domain}/status"
 
 #: A publisher's sequence numbers (its GID in hex -> (topic, last sequence number sent)).
 Sent = dict[str, tuple[str, int]]
+#: A publisher's GID in hex -> the GIDs of the subscriptions to its topic it has discovered.
+Matched = dict[str, list[str]]
 #: A subscription's GID in hex -> (topic, publisher GID in hex -> last sequence number handled).
 Handled = dict[str, tuple[str, dict[str, int]]]
 
@@ -26,7 +28,8 @@ class Report:
     is left to do (no queued message, request or timer, no service call awaiting its reply);
     ``next_ns`` is when its next timer (or clock sleep) is due. ``sent`` and ``handled`` count
     messages per publisher and per subscription, so the authority can tell whether a message
-    is still on its way.
+    is still on its way; ``matched`` says which subscriptions each publisher has discovered
+    (a message reaches a subscription only once its publisher's side knows of it).
     """
 
     participant: str
@@ -37,6 +40,7 @@ class Report:
     next_ns: int | None = None
     sent: Sent = field(default_factory=dict)
     handled: Handled = field(default_factory=dict)
+    matched: Matched = field(default_factory=dict)
     leaving: bool = False
 
     def to_bytes(self) -> bytes:
@@ -51,6 +55,7 @@ class Report:
                 "next_ns": self.next_ns,
                 "sent": {gid: list(entry) for gid, entry in self.sent.items()},
                 "handled": {gid: [t, seqs] for gid, (t, seqs) in self.handled.items()},
+                "matched": self.matched,
                 "leaving": self.leaving,
             }
         ).encode()
@@ -72,6 +77,7 @@ class Report:
                     gid: (str(t), {p: int(s) for p, s in seqs.items()})
                     for gid, (t, seqs) in raw["handled"].items()
                 },
+                matched={gid: [str(s) for s in subs] for gid, subs in raw["matched"].items()},
                 leaving=bool(raw["leaving"]),
             )
         except (KeyError, TypeError, AttributeError) as error:
