@@ -1,0 +1,58 @@
+"""``launchkit run --lockstep``: timers and messages follow the launch's simulated clock, the
+time advances only when every node is done, ``--until`` ends the launch with status 0, and a
+scripted scenario of the seed robot prints the same floats in every run."""
+
+from __future__ import annotations
+
+import os
+import re
+import subprocess
+import sys
+from pathlib import Path
+
+from launchkit.testing._isolation import free_loopback_port
+
+HERE = Path(__file__).parent / "launch"
+
+
+def run_lockstep(launch_file: str, until: float, tmp_path: Path, *extra: str) -> str:
+    """``launchkit run FILE --lockstep --until S``; its output (asserting status 0)."""
+    env = {**os.environ, "PYTHON": sys.executable, "ROS_LOG_DIR": str(tmp_path / "log")}
+    router = f"tcp/127.0.0.1:{free_loopback_port()}"
+    command = [sys.executable, "-m", "launchkit", "run", "--router", router]
+    command += [str(HERE / launch_file), "--lockstep", "--until", str(until), *extra]
+    done = subprocess.run(
+        command, env=env, capture_output=True, text=True, timeout=180, start_new_session=True
+    )
+    assert done.returncode == 0, done.stdout + done.stderr
+    return done.stdout
+
+
+def test_timers_and_messages_follow_the_simulated_clock(tmp_path: Path) -> None:
+    out = run_lockstep("ticker.launch.xml", 2.0, tmp_path)
+    ticks = re.findall(r"tick (\d+) at (\d+)", out)
+    heard = re.findall(r"heard (\d+) at (\d+)", out)
+    # every 0.25 s of simulated time, each message heard at the instant it was sent
+    assert ticks == [(str(n), str(n * 250_000_000)) for n in range(1, 9)]
+    assert heard == ticks
+    assert "reached the simulated time 2.000 s (--until)" in out
+
+
+def test_until_needs_lockstep(tmp_path: Path) -> None:
+    done = subprocess.run(
+        [sys.executable, "-m", "launchkit", "run", str(HERE / "ticker.launch.xml"), "--until", "1"],
+        capture_output=True,
+        text=True,
+        timeout=60,
+    )
+    assert done.returncode == 2
+    assert "error: --until needs --lockstep" in done.stderr
+
+
+def test_the_seed_scenario_prints_the_same_floats_every_run(tmp_path: Path) -> None:
+    answers = set()
+    for run in range(3):
+        out = run_lockstep("scenario.launch.xml", 3.5, tmp_path / str(run))
+        (line,) = [line for line in out.splitlines() if "ODOM at" in line]
+        answers.add(line.split("ODOM at", 1)[1])
+    assert len(answers) == 1, answers
