@@ -86,7 +86,7 @@ def _start_clock(
     clock: LaunchClock, supervisor: Supervisor, network: NodeNetwork, context: LaunchContext
 ) -> None:
     """Start a lockstep launch's clock on its router (started now, before any process)."""
-    from launchkit.envvars import ROUTER
+    from launchkit.runtime.network import ROUTER_ENV
 
     def log(level: str, message: str) -> None:  # the clock's thread: on the loop
         context.post(lambda: supervisor.log(level, "lockstep", message))
@@ -94,7 +94,7 @@ def _start_clock(
     def until() -> None:
         context.post(lambda: supervisor.begin_shutdown("the simulated time is up (--until)"))
 
-    clock.start(network.ensure(supervisor)[ROUTER], log, until)
+    clock.start(network.ensure(supervisor)[ROUTER_ENV], log, until)
 
 
 def _context(

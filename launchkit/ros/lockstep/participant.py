@@ -20,14 +20,11 @@ import contextlib
 import os
 import threading
 import time
-from typing import TYPE_CHECKING, Any
+from typing import Any
 
 from launchkit.envvars import LOCKSTEP
 from launchkit.ros.keyexpr import decode_attachment
 from launchkit.ros.lockstep.report import REPORT_KEY, Handled, Matched, Report, Sent
-
-if TYPE_CHECKING:
-    from launchkit.ros.context import Context
 
 #: Wall seconds after which an idle participant says the same again (an authority that
 #: started listening late, or a report lost).
@@ -45,7 +42,8 @@ def wanted() -> bool:
 class Participant:
     """One context's part in the lockstep (see the module's docstring)."""
 
-    def __init__(self, context: Context, name: str = "") -> None:
+    def __init__(self, context: Any, name: str = "") -> None:
+        # context: a launchkit.ros.context.Context (which imports this module)
         self.context = context
         self.name = name or os.path.basename(context.argv[0] if context.argv else "python")
         self.id = f"{os.getpid()}-{id(self):x}"
@@ -75,13 +73,10 @@ class Participant:
             if time_ns <= self._time_ns:
                 return
             self._time_ns = time_ns
-        from launchkit.ros.clock import ROSClock
-
         for node in list(self.context._nodes):
-            clock = getattr(node, "get_clock", lambda: None)()
-            if isinstance(clock, ROSClock) and clock.ros_time_is_active:
-                if clock.now().nanoseconds < time_ns:
-                    clock._set_override_ns(time_ns)
+            clock: Any = getattr(node, "get_clock", lambda: None)()  # a ROSClock
+            if getattr(clock, "ros_time_is_active", False) and clock.now().nanoseconds < time_ns:
+                clock._set_override_ns(time_ns)
 
     def handled(self, subscription: Any, attachment: bytes | None) -> None:
         """``subscription`` is done with the message of ``attachment`` (taken or dropped)."""
