@@ -106,6 +106,7 @@ class Node(EntityMethods, ParameterMethods, GraphQueries):
         self._default_callback_group = MutuallyExclusiveCallbackGroup()
         self._rate_group = ReentrantCallbackGroup()
         self._clock = ROSClock()
+        self._clock.sleep_watcher = self.context.lockstep
         self._clock_sub: Subscription | None = None
         self._destroyed = False
 

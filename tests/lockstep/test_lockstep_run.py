@@ -38,6 +38,14 @@ def test_timers_and_messages_follow_the_simulated_clock(tmp_path: Path) -> None:
     assert "reached the simulated time 2.000 s (--until)" in out
 
 
+def test_a_rate_loop_stops_the_clock_at_each_wake_up(tmp_path: Path) -> None:
+    out = run_lockstep("rate.launch.xml", 2.0, tmp_path)
+    ticks = re.findall(r"tick (\d+) at (\d+)", out)
+    heard = re.findall(r"heard (\d+) at (\d+)", out)
+    assert ticks == [(str(n), str(n * 250_000_000)) for n in range(1, 9)]
+    assert heard == ticks
+
+
 def test_until_needs_lockstep(tmp_path: Path) -> None:
     done = subprocess.run(
         [sys.executable, "-m", "launchkit", "run", str(HERE / "ticker.launch.xml"), "--until", "1"],

@@ -53,6 +53,8 @@ class Participant:
         self._last: Report | None = None
         self._sent_at = 0.0
         self._watching_graph = False
+        self._sleeps: dict[int, int] = {}  # thread id -> the simulated time it sleeps until
+        self._woken: set[int] = set()  # threads woken by the clock, not sleeping or spinning
         context.on_shutdown(self.leave)
 
     # what publishers and subscriptions call ------------------------------------------------
@@ -93,9 +95,31 @@ class Participant:
             if decoded.sequence > seqs.get(publisher, 0):
                 seqs[publisher] = decoded.sequence
 
+    # what clocks call (launchkit.ros.clock.SleepWatcher) ------------------------------------
+    def sleeping(self, until_ns: int) -> None:
+        """The calling thread sleeps on the simulated clock until ``until_ns``."""
+        me = threading.get_ident()
+        with self._lock:
+            self._woken.discard(me)
+            self._sleeps[me] = until_ns
+        self._wake_executors()  # the time now has something due: say so
+
+    def woke(self) -> None:
+        """The calling thread's sleep ended: it is busy until it sleeps or spins again."""
+        me = threading.get_ident()
+        with self._lock:
+            self._sleeps.pop(me, None)
+            self._woken.add(me)
+
+    def _wake_executors(self) -> None:
+        for node in list(self.context._nodes):
+            node.wake()
+
     # what executors call ------------------------------------------------------------------
     def on_idle(self) -> None:
         """An executor found nothing to run: report the state if it changed."""
+        with self._lock:
+            self._woken.discard(threading.get_ident())  # this thread spins, so is not busy
         report = self.report()
         if report.same_state(self._last) and time.monotonic() - self._sent_at < HEARTBEAT:
             return
@@ -129,6 +153,11 @@ class Participant:
                     idle = False
                 next_ns = due if next_ns is None else min(next_ns, due)
         with self._lock:
+            if self._woken:
+                idle = False
+            for due in self._sleeps.values():
+                idle = idle and due > now
+                next_ns = due if next_ns is None else min(next_ns, due)
             for key in [k for k in self._handled if k not in subscriptions]:
                 del self._handled[key]  # destroyed subscriptions
             for gid, topic, seqs in self._handled.values():
@@ -151,8 +180,7 @@ class Participant:
     def _graph_changed(self, token: Any, appeared: bool) -> None:
         # a Zenoh thread: a subscription appeared or left; the executors report it
         if token.kind == "MS":
-            for node in list(self.context._nodes):
-                node.wake()
+            self._wake_executors()
 
     def _send(self, report: Report) -> None:
         key = REPORT_KEY.format(domain=self.context.domain_id, participant=self.id)

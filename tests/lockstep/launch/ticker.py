@@ -1,7 +1,9 @@
-"""A node whose sim-time timer publishes a count; another that prints what it hears, with its
-own clock's time. Both run on the launch's clock."""
+"""A node whose sim-time timer publishes a count (``ticker``), or whose loop does on a
+``Rate`` (``rater``); another that prints what it hears, with its own clock's time. All run
+on the launch's clock."""
 
 import sys
+import threading
 
 import rclpy
 from rclpy.node import Node
@@ -22,6 +24,16 @@ def main() -> None:
             print(f"tick {count[0]} at {node.get_clock().now().nanoseconds}", flush=True)
 
         node.create_timer(0.25, tick)
+    elif role == "rater":
+        pub = node.create_publisher(Int64, "ticks", 10)
+        threading.Thread(target=rclpy.spin, args=(node,), daemon=True).start()
+        rate = node.create_rate(4.0)
+        count = 0
+        while rclpy.ok():
+            rate.sleep()
+            count += 1
+            pub.publish(Int64(data=count))
+            print(f"tick {count} at {node.get_clock().now().nanoseconds}", flush=True)
     else:
 
         def heard(msg: Int64) -> None:
