@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import contextlib
 import threading
 import time
 from collections import deque
@@ -272,7 +273,9 @@ class Client(_ServiceEntity):
         """Block until a server appears; False after ``timeout_sec``, or as soon as the context
         is no longer ok (a SIGINT or SIGTERM, as rclpy's wait stops)."""
         context = self.node.context
-        context.graph.wait_for(lambda: self.service_is_ready() or not context.ok(), timeout_sec)
+        # in a lockstep launch the simulated time waits with it (the timeout is wall time)
+        with contextlib.nullcontext() if context.lockstep is None else context.lockstep.hold():
+            context.graph.wait_for(lambda: self.service_is_ready() or not context.ok(), timeout_sec)
         return self.service_is_ready()
 
     def call_async(self, request: Any, timeout_sec: float | None = None) -> Future:

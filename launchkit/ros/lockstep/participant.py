@@ -20,6 +20,7 @@ import contextlib
 import os
 import threading
 import time
+from collections.abc import Iterator
 from typing import Any
 
 from launchkit.envvars import LOCKSTEP
@@ -55,6 +56,7 @@ class Participant:
         self._watching_graph = False
         self._sleeps: dict[int, int] = {}  # thread id -> the simulated time it sleeps until
         self._woken: set[int] = set()  # threads woken by the clock, not sleeping or spinning
+        self._holds = 0  # blocks of code that keep the time where it is (see hold)
         context.on_shutdown(self.leave)
 
     # what publishers and subscriptions call ------------------------------------------------
@@ -111,6 +113,21 @@ class Participant:
             self._sleeps.pop(me, None)
             self._woken.add(me)
 
+    @contextlib.contextmanager
+    def hold(self) -> Iterator[None]:
+        """Keep the simulated time where it is while the block runs (waiting for a service,
+        say: what the node does once it is there then happens at the same instant in every
+        run). The block's own timeouts are wall time."""
+        with self._lock:
+            self._holds += 1
+        self._send(self.report())
+        try:
+            yield
+        finally:
+            with self._lock:
+                self._holds -= 1
+            self._wake_executors()
+
     def _wake_executors(self) -> None:
         for node in list(self.context._nodes):
             node.wake()
@@ -153,7 +170,7 @@ class Participant:
                     idle = False
                 next_ns = due if next_ns is None else min(next_ns, due)
         with self._lock:
-            if self._woken:
+            if self._woken or self._holds:
                 idle = False
             for due in self._sleeps.values():
                 idle = idle and due > now

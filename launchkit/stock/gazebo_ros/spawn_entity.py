@@ -12,6 +12,7 @@ otherwise.
 from __future__ import annotations
 
 import argparse
+import contextlib
 import sys
 import time
 from pathlib import Path
@@ -132,7 +133,10 @@ def main(argv: list[str]) -> int:
     """Spawn the entity; ``argv`` is the whole command line."""
     args = parse_args(argv[1:])
     with _entry.ros_node(argv, "spawn_entity") as node:
-        message = spawn(node, args)
+        lockstep = node.context.lockstep
+        # in a lockstep launch the entity is spawned at the simulated time the spawner started
+        with contextlib.nullcontext() if lockstep is None else lockstep.hold():
+            message = spawn(node, args)
     print(f"[spawn_entity] {message}", flush=True)
     return 0
 
