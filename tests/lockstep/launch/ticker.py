@@ -1,9 +1,10 @@
 """A node whose sim-time timer publishes a count (``ticker``), or whose loop does on a
-``Rate`` (``rater``); another that prints what it hears, with its own clock's time. All run
+``Rate`` (``rater``), or whose timer callback never returns (``stuck``); another that prints what it hears, with its own clock's time. All run
 on the launch's clock."""
 
 import sys
 import threading
+import time
 
 import rclpy
 from rclpy.node import Node
@@ -24,6 +25,13 @@ def main() -> None:
             print(f"tick {count[0]} at {node.get_clock().now().nanoseconds}", flush=True)
 
         node.create_timer(0.25, tick)
+    elif role == "stuck":  # its callback at 0.5 s never returns: the time stands there
+
+        def hang() -> None:
+            print("hanging at", node.get_clock().now().nanoseconds, flush=True)
+            time.sleep(3600)
+
+        node.create_timer(0.5, hang)
     elif role == "rater":
         pub = node.create_publisher(Int64, "ticks", 10)
         threading.Thread(target=rclpy.spin, args=(node,), daemon=True).start()
