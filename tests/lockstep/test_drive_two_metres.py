@@ -34,3 +34,14 @@ def test_the_robot_drives_two_metres_in_simulated_time(launch):
     assert 2.0 <= math.hypot(end.x - start.x, end.y - start.y) < 2.3
     assert abs(end.y - start.y) < 0.05  # straight ahead
     assert end.x < start.x  # toward the base's -x
+
+
+def test_the_docs_show_this_file():
+    """docs/testing.md's lockstep example is this file, from ``import math`` to the line above
+    this test."""
+    from pathlib import Path
+
+    here = Path(__file__).read_text()
+    example = here[here.index("import math") : here.index("\n\n\ndef test_the_docs_show_this_file")]
+    docs = (Path(__file__).parents[2] / "docs" / "testing.md").read_text()
+    assert f"```python\n{example}\n```" in docs

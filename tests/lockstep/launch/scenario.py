@@ -3,6 +3,8 @@
 ``driver``: publishes /cmd_vel from a 10 Hz timer: forward and turning from 0.5 s to 2.5 s of
 simulated time, then stopped. ``printer``: keeps the latest /odom and prints its stamp and pose,
 every float in full, when its timer reaches the simulated time given as argument.
+``camera`` (a benchmark's): counts the camera's frames and prints the count every simulated
+second.
 """
 
 import sys
@@ -52,12 +54,31 @@ def printer(node: Node, at: float) -> None:
     node.create_timer(0.05, show)
 
 
+def camera(node: Node) -> None:
+    from sensor_msgs.msg import Image
+
+    frames = [0]
+
+    def count(_msg: Image) -> None:
+        frames[0] += 1
+
+    node.create_subscription(Image, "/camera1/image_raw", count, 5)
+
+    def show() -> None:
+        now = node.get_clock().now().nanoseconds
+        print(f"FRAMES {frames[0]} at {now}", flush=True)
+
+    node.create_timer(1.0, show)
+
+
 def main() -> None:
     rclpy.init()
     role = sys.argv[1]
     node = Node(role)
     if role == "driver":
         driver(node)
+    elif role == "camera":
+        camera(node)
     else:
         printer(node, float(sys.argv[2]))
     try:
