@@ -70,6 +70,7 @@ class TimeAuthority:
         self._stopped = False
         self._started_all = False  # the launch has started what it starts at once
         self._time_ns = 0
+        self._steps = 0  # instants the time has moved to
         self._target_ns: int | None = 0 if options.paused else None
         self._until_ns = None if options.until is None else round(options.until * _NS)
         self._pace_anchor: tuple[float, int] | None = None
@@ -188,7 +189,11 @@ class TimeAuthority:
                     self._log("WARNING", f"simulated time stands at {self._seconds()}: {reason}")
                 continue
             if self._until_ns is not None and self._time_ns >= self._until_ns:
-                self._log("INFO", f"reached the simulated time {self._seconds()} (--until)")
+                self._log(
+                    "INFO",
+                    f"reached the simulated time {self._seconds()} in {self._steps} steps "
+                    "(--until)",
+                )
                 self._on_until()
                 self._until_ns = None
                 continue
@@ -200,6 +205,7 @@ class TimeAuthority:
             with self._changed:
                 self._state.start_pairs(self._own_sent())
             self._time_ns = next_ns
+            self._steps += 1
             self._publish_clock()
             stalled_since, noted = time.monotonic(), False
 
