@@ -4,7 +4,6 @@ from __future__ import annotations
 
 import contextlib
 import threading
-import time
 from collections import deque
 from collections.abc import Callable
 from typing import TYPE_CHECKING, Any
@@ -12,6 +11,7 @@ from typing import TYPE_CHECKING, Any
 import zenoh
 
 from launchkit.ros.keyexpr import decode_attachment, encode_attachment, entity_token, gid_of
+from launchkit.ros.lockstep.participant import stamp_ns
 from launchkit.ros.logging import get_logger
 from launchkit.ros.msgs import deserialize, message_type_name, serialize, type_hash
 from launchkit.ros.qos import HistoryPolicy, QoSProfile
@@ -118,6 +118,8 @@ class Service(_ServiceEntity):
             b"" if payload is None else payload.to_bytes(),
             None if attachment is None else attachment.to_bytes(),
         )
+        if self.node.context.lockstep is not None:
+            self.node.context.lockstep.received(item[2])  # a request of a later instant
         qos = self.qos_profile.resolved()
         with self._pending_lock:
             if qos.history != HistoryPolicy.KEEP_ALL and len(self._pending) >= qos.effective_depth:
@@ -159,7 +161,7 @@ class Service(_ServiceEntity):
             return  # a request through another user's router gets no answer
 
         def reply(data: bytes) -> None:
-            attachment = encode_attachment(sequence, time.time_ns(), gid)
+            attachment = encode_attachment(sequence, stamp_ns(self.node.context), gid)
             query.reply(self.key, data, attachment=attachment)
             query.drop()  # type: ignore[no-untyped-call]
 
@@ -305,7 +307,7 @@ class Client(_ServiceEntity):
             self._sequence += 1
             sequence = self._sequence
             self._pending_requests[sequence] = future
-            attachment = encode_attachment(sequence, time.time_ns(), self.gid)
+            attachment = encode_attachment(sequence, stamp_ns(self.node.context), self.gid)
         response_type = self.type_name + "_Response"
 
         def on_reply(reply: zenoh.Reply) -> None:

@@ -14,6 +14,7 @@ from zenoh import ext
 
 from launchkit.ros.event_handler import MatchedEvent
 from launchkit.ros.keyexpr import decode_attachment, encode_attachment, entity_token, gid_of
+from launchkit.ros.lockstep.participant import stamp_ns
 from launchkit.ros.msgs import codec, message_type_name, type_hash
 from launchkit.ros.qos import DurabilityPolicy, HistoryPolicy, QoSProfile, ReliabilityPolicy
 from launchkit.ros.task import await_or_execute
@@ -204,8 +205,7 @@ class Publisher(_Entity):
             return  # linked to another user's router: nothing more leaves (context.py)
         with self._lock:
             self._sequence += 1
-            lockstep = self.node.context.lockstep
-            stamp = time.time_ns() if lockstep is None else lockstep.time_ns
+            stamp = stamp_ns(self.node.context)
             attachment = encode_attachment(self._sequence, stamp, self.gid)
             self._pub.put(data, attachment=attachment)
 

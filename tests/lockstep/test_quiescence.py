@@ -50,7 +50,8 @@ def test_every_participant_idle_at_the_time_with_every_message_handled_may_advan
 def test_a_busy_participant_or_one_behind_the_time_holds_it() -> None:
     busy = Report("a", (1,), "a", 100, False)
     assert "a is busy" in str(state(busy).waiting_for(100, {}, {}))
-    behind = Report("a", (1,), "a", 90, True)
+    behind = Report("a", (1,), "a", 90, True, next_ns=95)
+    assert state(Report("a", (1,), "a", 90, True, next_ns=150)).waiting_for(100, {}, {}) is None
     assert "a has not reached the time" in str(state(behind).waiting_for(100, {}, {}))
 
 

@@ -24,7 +24,7 @@ from typing import Any
 
 from launchkit.ros.lockstep.participant import Participant
 from launchkit.ros.lockstep.quiescence import Quiescence
-from launchkit.ros.lockstep.report import CONTROL_KEY, REPORTS, STATUS_KEY, Report
+from launchkit.ros.lockstep.report import CONTROL_KEY, REPORTS, STATUS_KEY, WAKE_KEY, Report
 
 _NS = 1_000_000_000
 #: Wall seconds between two re-sends of ``/clock`` to a participant that has not reached it.
@@ -41,6 +41,7 @@ class ClockOptions:
     until: float | None = None  # end the launch at this simulated time (seconds)
     paused: bool = False  # advance only on request (the test plugin)
     max_step: float = 0.1  # the most the time moves in one step (seconds)
+    clock_period: float = 0.1  # /clock at least this often in simulated seconds (10 Hz)
     join_grace: float = 10.0  # wall seconds a started process has to join
 
 
@@ -74,6 +75,7 @@ class TimeAuthority:
         self._target_ns: int | None = 0 if options.paused else None
         self._until_ns = None if options.until is None else round(options.until * _NS)
         self._pace_anchor: tuple[float, int] | None = None
+        self._clock_published_ns = 0
         self._clock_pub: Any = None
         self._thread = threading.Thread(target=self._run, name="lockstep-clock", daemon=True)
 
@@ -174,7 +176,7 @@ class TimeAuthority:
                     return
                 self._give_up_on_late_joiners()
                 reason = self._waiting_for()
-                lagging = any(r.time_ns < self._time_ns for r in self._state.reports.values())
+                lagging = self._state.to_wake(self._time_ns)
             quiet = reason is None
             if (self._time_ns, quiet) != last_status:
                 last_status = (self._time_ns, quiet)
@@ -183,7 +185,7 @@ class TimeAuthority:
                 now = time.monotonic()
                 if lagging and now - last_resend > _RESEND:
                     last_resend = now
-                    self._publish_clock()  # a participant that joined after it was published
+                    self._wake(lagging)  # one that joined late, or a wake-up lost
                 if not noted and now - stalled_since > _STALL_NOTE:
                     noted = True
                     self._log("WARNING", f"simulated time stands at {self._seconds()}: {reason}")
@@ -206,7 +208,12 @@ class TimeAuthority:
                 self._state.start_pairs(self._own_sent())
             self._time_ns = next_ns
             self._steps += 1
-            self._publish_clock()
+            self._stamp.advance_clocks(next_ns)
+            if next_ns - self._clock_published_ns >= round(self.options.clock_period * _NS):
+                self._publish_clock()
+            with self._changed:
+                due = self._state.to_wake(next_ns)
+            self._wake(due)
             stalled_since, noted = time.monotonic(), False
 
     def _waiting_for(self) -> str | None:
@@ -275,8 +282,17 @@ class TimeAuthority:
         tokens = self._context.graph.tokens("MS", pub.topic_name)
         return {pub.gid.hex(): [t.gid.hex() for t in tokens]}
 
+    def _wake(self, participants: list[str]) -> None:
+        """Tell ``participants`` the time reached their next due instant."""
+        session, domain = self._context.session, self._context.domain_id
+        for participant in participants:
+            key = WAKE_KEY.format(domain=domain, participant=participant)
+            session.put(key, str(self._time_ns).encode())
+
     def _publish_clock(self) -> None:
-        self._stamp.advance_clocks(self._time_ns)
+        """``/clock`` for every node: participants follow it (those with something due are
+        woken directly), and so do the processes outside the lockstep."""
+        self._clock_published_ns = self._time_ns
         sec, nanosec = divmod(self._time_ns, _NS)
         stamp = get_time_message(sec, nanosec)
         self._clock_pub.publish(self._clock_type(clock=stamp))

@@ -25,7 +25,7 @@ from typing import Any
 
 from launchkit.envvars import LOCKSTEP
 from launchkit.ros.keyexpr import decode_attachment
-from launchkit.ros.lockstep.report import REPORT_KEY, Handled, Matched, Report, Sent
+from launchkit.ros.lockstep.report import REPORT_KEY, WAKE_KEY, Handled, Matched, Report, Sent
 
 #: Wall seconds after which an idle participant says the same again (an authority that
 #: started listening late, or a report lost).
@@ -33,6 +33,13 @@ HEARTBEAT = 1.0
 #: Attachment stamps below this (2001-09-09 as epoch nanoseconds) are simulated times; a
 #: process outside the lockstep stamps wall time, far above it, and does not move clocks.
 SIM_TIME_LIMIT_NS = 10**18
+
+
+def stamp_ns(context: Any) -> int:
+    """What a message of ``context`` carries as its source time: the simulated time in a
+    lockstep launch, the wall time otherwise (rmw_zenoh's)."""
+    lockstep = context.lockstep
+    return time.time_ns() if lockstep is None else int(lockstep.time_ns)
 
 
 def wanted() -> bool:
@@ -57,6 +64,7 @@ class Participant:
         self._sleeps: dict[int, int] = {}  # thread id -> the simulated time it sleeps until
         self._woken: set[int] = set()  # threads woken by the clock, not sleeping or spinning
         self._holds = 0  # blocks of code that keep the time where it is (see hold)
+        self._wake_sub: Any = None  # the authority's "your next instant is due" (see _send)
         context.on_shutdown(self.leave)
 
     # what publishers and subscriptions call ------------------------------------------------
@@ -200,11 +208,24 @@ class Participant:
             self._wake_executors()
 
     def _send(self, report: Report) -> None:
-        key = REPORT_KEY.format(domain=self.context.domain_id, participant=self.id)
+        domain = self.context.domain_id
         self._last = report
         self._sent_at = time.monotonic()
         with contextlib.suppress(Exception):  # the session is closing: the launcher sees the exit
-            self.context.session.put(key, report.to_bytes())
+            session = self.context.session
+            if self._wake_sub is None and not report.leaving:
+                wake = WAKE_KEY.format(domain=domain, participant=self.id)
+                self._wake_sub = session.declare_subscriber(wake, self._on_wake)
+            session.put(REPORT_KEY.format(domain=domain, participant=self.id), report.to_bytes())
+
+    def _on_wake(self, sample: Any) -> None:
+        # a Zenoh thread: the time reached this participant's next due instant
+        try:
+            time_ns = int(sample.payload.to_bytes())
+        except ValueError:
+            return
+        self.advance_clocks(time_ns)
+        self._wake_executors()
 
     def leave(self) -> None:
         """Tell the authority this participant is gone (its context shuts down)."""

@@ -4,7 +4,9 @@ Pure bookkeeping over the participants' latest :class:`~.report.Report`s, so it 
 without processes. The authority may advance from ``T`` when:
 
 1. every process it expects (started by the launch) has joined, or has been given up on;
-2. every participant's latest report is idle at ``T`` (nothing due at or before ``T`` left);
+2. every participant's latest report is idle, and at ``T`` if it had something due by then
+   (a participant with nothing due is not woken: it follows the time when a message of a later
+   instant reaches it, or ``/clock``);
 3. every message sent so far on a topic has been handled by every participant subscription
    to that topic, counted by publisher sequence numbers: for a publisher ``P`` and a
    subscription ``S`` on its topic, ``S``'s last handled sequence number of ``P`` has reached
@@ -72,7 +74,7 @@ class Quiescence:
         """What keeps the time at ``time_ns`` (None: it may advance). ``extra_sent`` and
         ``extra_matched`` add the authority's own publishers (``/clock``)."""
         for report in self.reports.values():
-            if report.time_ns < time_ns:
+            if report.time_ns < time_ns and self.due(report, time_ns):
                 return f"{report.name} has not reached the time yet"
             if not report.idle:
                 return f"{report.name} is busy"
@@ -104,6 +106,19 @@ class Quiescence:
                     if pub_topic == topic and sub_gid not in matched.get(pub_gid, ()):
                         return f"a publisher of {topic} has not discovered {report.name} yet"
         return None
+
+    @staticmethod
+    def due(report: Report, time_ns: int) -> bool:
+        """Whether ``report``'s participant has something due at or before ``time_ns``."""
+        return report.next_ns is not None and report.next_ns <= time_ns
+
+    def to_wake(self, time_ns: int) -> list[str]:
+        """The participants with something due at ``time_ns`` that have not reached it."""
+        return [
+            r.participant
+            for r in self.reports.values()
+            if r.time_ns < time_ns and self.due(r, time_ns)
+        ]
 
     def next_due(self, after_ns: int) -> int | None:
         """The earliest time after ``after_ns`` that a participant has something due."""

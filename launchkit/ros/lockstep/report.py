@@ -9,6 +9,7 @@ from typing import Any
 #: Zenoh keys of a domain's lockstep traffic (outside the ROS key space: no ROS tool sees it).
 REPORT_KEY = "launchkit_lockstep/{domain}/report/{participant}"
 REPORTS = "launchkit_lockstep/{domain}/report/*"
+WAKE_KEY = "launchkit_lockstep/{domain}/wake/{participant}"
 CONTROL_KEY = "launchkit_lockstep/{domain}/control"
 STATUS_KEY = "launchkit_lockstep/{domain}/status"
 
@@ -85,4 +86,4 @@ class Report:
 
     def same_state(self, other: Report | None) -> bool:
         """Whether ``other`` says the same (a participant does not repeat itself)."""
-        return other is not None and self.to_bytes() == other.to_bytes()
+        return self == other

@@ -20,6 +20,7 @@ for a model without a joint state plugin; 0 for none, as in Gazebo; see
 from __future__ import annotations
 
 import faulthandler
+import math
 import os
 import signal
 from dataclasses import dataclass, field
@@ -352,11 +353,20 @@ class SimServer:
                 if not (output.implicit and output.topic in self.yielded_topics)
             ]
         steps_per_second = max(1, round(1.0 / self.sim.time_step))
-        for ahead in range(1, steps_per_second + 1):
-            when = self._step_time(ahead)
-            if any(gate.is_due(when) for gate in gates):
-                return _ns(when)
-        return _ns(self._step_time(steps_per_second))
+        ahead = min([self._steps_until(gate) for gate in gates] + [steps_per_second])
+        return _ns(self._step_time(ahead))
+
+    def _steps_until(self, gate: RateGate) -> int:
+        """How many steps ahead ``gate`` is first due (at least 1)."""
+        due = gate.next_due()
+        if due is None:
+            return 1
+        ahead = max(1, math.ceil(due / self.sim.time_step) - self.sim.steps)
+        while ahead > 1 and gate.is_due(self._step_time(ahead - 1)):  # float rounding
+            ahead -= 1
+        while not gate.is_due(self._step_time(ahead)):
+            ahead += 1
+        return ahead
 
     def close(self) -> None:
         """Stop the children and the physics."""

@@ -45,6 +45,10 @@ class RateGate:
         # A little slack so a 1/240 s step grid does not skip a beat on rounding.
         return self.last is None or now - self.last >= self.period - 1e-9
 
+    def next_due(self) -> float | None:
+        """The sim time from which :meth:`is_due` holds (None: at once)."""
+        return None if self.last is None else self.last + self.period - 1e-9
+
     def due(self, now: float) -> bool:
         """True (and remember ``now``) when a period has passed since the last firing."""
         if not self.is_due(now):
