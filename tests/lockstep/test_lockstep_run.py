@@ -28,22 +28,22 @@ def run_lockstep(launch_file: str, until: float, tmp_path: Path, *extra: str) ->
     return done.stdout
 
 
-def test_timers_and_messages_follow_the_simulated_clock(tmp_path: Path) -> None:
-    out = run_lockstep("ticker.launch.xml", 2.0, tmp_path)
+def assert_ticks_every_quarter_second(out: str) -> None:
+    """A tick every 0.25 s of simulated time, each heard at the instant it was sent."""
     ticks = re.findall(r"tick (\d+) at (\d+)", out)
     heard = re.findall(r"heard (\d+) at (\d+)", out)
-    # every 0.25 s of simulated time, each message heard at the instant it was sent
     assert ticks == [(str(n), str(n * 250_000_000)) for n in range(1, 9)]
     assert heard == ticks
+
+
+def test_timers_and_messages_follow_the_simulated_clock(tmp_path: Path) -> None:
+    out = run_lockstep("ticker.launch.xml", 2.0, tmp_path)
+    assert_ticks_every_quarter_second(out)
     assert re.search(r"reached the simulated time 2.000 s in \d+ steps \(--until\)", out)
 
 
 def test_a_rate_loop_stops_the_clock_at_each_wake_up(tmp_path: Path) -> None:
-    out = run_lockstep("rate.launch.xml", 2.0, tmp_path)
-    ticks = re.findall(r"tick (\d+) at (\d+)", out)
-    heard = re.findall(r"heard (\d+) at (\d+)", out)
-    assert ticks == [(str(n), str(n * 250_000_000)) for n in range(1, 9)]
-    assert heard == ticks
+    assert_ticks_every_quarter_second(run_lockstep("rate.launch.xml", 2.0, tmp_path))
 
 
 def test_until_needs_lockstep(tmp_path: Path) -> None:

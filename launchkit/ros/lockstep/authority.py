@@ -68,6 +68,7 @@ class TimeAuthority:
         self._state = Quiescence()
         self._expected: dict[int, tuple[str, float]] = {}  # pid -> (label, wall time started)
         self._changed = threading.Condition()
+        self._news = False  # a report, a process or a request came since the loop last looked
         self._stopped = False
         self._started_all = False  # the launch has started what it starts at once
         self._time_ns = 0
@@ -110,26 +111,26 @@ class TimeAuthority:
         with self._changed:
             if not self._state.joined(pid):
                 self._expected[pid] = (label, time.monotonic())
-            self._changed.notify_all()
+            self._notify()
 
     def launch_ready(self) -> None:
         """The launch has started every process it starts at once: the time may go."""
         with self._changed:
             self._started_all = True
-            self._changed.notify_all()
+            self._notify()
 
     def exited(self, pid: int) -> None:
         """Process ``pid`` exited: no longer a participant."""
         with self._changed:
             self._expected.pop(pid, None)
             self._state.forget_pid(pid)
-            self._changed.notify_all()
+            self._notify()
 
     def close(self) -> None:
         """Stop the thread and leave the transport."""
         with self._changed:
             self._stopped = True
-            self._changed.notify_all()
+            self._notify()
         if self._thread.is_alive():
             self._thread.join(timeout=2.0)
         self._context.try_shutdown()
@@ -149,7 +150,7 @@ class TimeAuthority:
             return
         with self._changed:
             self._state.update(report)
-            self._changed.notify_all()
+            self._notify()
 
     def _on_control(self, sample: Any) -> None:
         try:
@@ -159,7 +160,12 @@ class TimeAuthority:
             return
         with self._changed:
             self._target_ns = max(target, self._target_ns or 0)
-            self._changed.notify_all()
+            self._notify()
+
+    def _notify(self) -> None:
+        """Something changed (call with ``_changed`` held): the loop looks again."""
+        self._news = True
+        self._changed.notify_all()
 
     # the decision loop ---------------------------------------------------------------------
     def _run(self) -> None:
@@ -169,9 +175,9 @@ class TimeAuthority:
         last_status: tuple[int, bool] | None = None
         while True:
             with self._changed:
-                if self._stopped:
-                    return
-                self._changed.wait(timeout=0.2)
+                if not self._news:  # what came while the loop was busy counts too
+                    self._changed.wait(timeout=0.2)
+                self._news = False
                 if self._stopped:
                     return
                 self._give_up_on_late_joiners()

@@ -13,6 +13,7 @@ import rclpy
 from geometry_msgs.msg import Twist
 from nav_msgs.msg import Odometry
 from rclpy.node import Node
+from ticker import spin_until_stopped  # beside this file
 
 
 def driver(node: Node) -> None:
@@ -81,10 +82,7 @@ def main() -> None:
         camera(node)
     else:
         printer(node, float(sys.argv[2]))
-    try:
-        rclpy.spin(node)
-    except (KeyboardInterrupt, rclpy.executors.ExternalShutdownException):
-        pass
+    spin_until_stopped(node)
 
 
 if __name__ == "__main__":

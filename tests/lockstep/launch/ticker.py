@@ -48,6 +48,11 @@ def main() -> None:
             print(f"heard {msg.data} at {node.get_clock().now().nanoseconds}", flush=True)
 
         node.create_subscription(Int64, "ticks", heard, 10)
+    spin_until_stopped(node)
+
+
+def spin_until_stopped(node: Node) -> None:
+    """Spin ``node`` until Ctrl-C or SIGTERM."""
     try:
         rclpy.spin(node)
     except (KeyboardInterrupt, rclpy.executors.ExternalShutdownException):
