@@ -305,8 +305,8 @@ def _launch(args: argparse.Namespace, hooks: SupervisorHooks | None = None) -> i
         raise
     if args.show_all_subprocesses_output:
         os.environ["OVERRIDE_LAUNCH_PROCESS_OUTPUT"] = "both"
+    from launchkit.own_process import become_subreaper
     from launchkit.ros_cli.router_options import federation_asked, federation_options
-    from launchkit.runtime.prctl import become_subreaper
 
     options = federation_options(args) if federation_asked(args) else None
     lockstep = _lockstep_options(args)

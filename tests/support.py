@@ -1,6 +1,7 @@
 """Helpers shared by tests of several folders: a router hosted by the test process, a poll
 with a deadline for conditions that no event announces, the output lines of a child process
-read as they come (taken one by one, or kept), and ROS-style packages in an install prefix.
+read as they come (taken one by one, or kept), ROS-style packages in an install prefix, and the
+processes a test's ``sleep MARKER`` commands started.
 
 (``launchkit.testing._isolation`` has the free loopback port and the router endpoint for it.)
 """
@@ -177,3 +178,16 @@ def ament_package(
         (lib / executable).write_text(script)
         (lib / executable).chmod(0o755)
     return prefix
+
+
+def sleepers(marker: str) -> list[int]:
+    """Pids of the live ``sleep MARKER`` processes (a test's own, by its unique ``marker``)."""
+    found = []
+    for entry in Path("/proc").iterdir():
+        try:
+            command = (entry / "cmdline").read_bytes().split(b"\0")
+        except OSError:
+            continue
+        if command[:2] == [b"sleep", marker.encode()]:
+            found.append(int(entry.name))
+    return found

@@ -30,11 +30,11 @@ from pathlib import Path
 
 from launchkit.envvars import ROUTER_AUTOSTART, ROUTER_IDLE_TIMEOUT
 from launchkit.errors import RuntimeLaunchError, UserError
+from launchkit.own_process import not_subreaper
 from launchkit.ros.endpoints import host_port, is_loopback
 from launchkit.ros.port_owner import command_line
 from launchkit.ros.router_access import router_answers
 from launchkit.ros.rundir import locked, router_file
-from launchkit.runtime.containment import not_subreaper
 
 DEFAULT_IDLE_TIMEOUT = 300.0
 START_TIMEOUT = 30.0  # for the background router to listen (a cold Python start under load)

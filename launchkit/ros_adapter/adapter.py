@@ -14,7 +14,7 @@ from launchkit.description.ros_link import LoadRequest, Report
 from launchkit.envvars import ROUTER
 from launchkit.errors import LaunchkitError
 from launchkit.ros.context import Context, NotInitializedError
-from launchkit.ros.executor import SingleThreadedExecutor
+from launchkit.ros.executor import ExternalShutdownException, SingleThreadedExecutor
 from launchkit.ros.node import Node
 from launchkit.ros.params import Parameter, load_params_file, parameter_from_value
 
@@ -65,11 +65,12 @@ class RosAdapter:
         def run() -> None:
             try:
                 work()
-            except NotInitializedError:
+            except (NotInitializedError, ExternalShutdownException):
                 if not self._closed.is_set():
                     raise
                 # the launch ended (a lifecycle node that exited at once, say) while this
-                # worker waited for a service: its context is gone, and so is its purpose
+                # worker waited for a service or spun: its context is gone, and so is its
+                # purpose
 
         thread = threading.Thread(target=run, name="launchkit-ros-link", daemon=True)
         self._threads.append(thread)

@@ -20,8 +20,8 @@ Two ways to keep hold of such processes, the first that works here:
   only strays still below one of the launch's processes are found (not a daemon whose parent
   exited).
 
-The shared background router is started outside the subreaper (:func:`not_subreaper`): it is
-meant to outlive the launch.
+The shared background router is started outside the subreaper
+(:func:`launchkit.own_process.not_subreaper`): it is meant to outlive the launch.
 """
 
 from __future__ import annotations
@@ -31,19 +31,16 @@ import os
 import secrets
 import signal
 import time
-from collections.abc import Callable, Iterator
+from collections.abc import Callable
 from pathlib import Path
 
 from launchkit.envvars import NO_CGROUP
-from launchkit.runtime.prctl import PR_SET_CHILD_SUBREAPER, is_subreaper, set_prctl
+from launchkit.own_process import is_subreaper, own_helpers
 
 #: Seconds between two looks for strays when there is no cgroup.
 SWEEP_PERIOD = 0.5
 #: Seconds the end of a launch waits for its cgroup to empty after ``cgroup.kill``.
 KILL_WAIT = 2.0
-#: Children the launcher runs for itself (the orphan guard, the ``$(eval)`` evaluator): never
-#: strays.
-own_helpers: set[int] = set()
 
 
 def cgroup_v2_path() -> Path | None:
@@ -216,17 +213,3 @@ def _reap(pid: int) -> None:
         except (ChildProcessError, OSError):
             return
         time.sleep(0.005)
-
-
-@contextlib.contextmanager
-def not_subreaper() -> Iterator[None]:
-    """Within the body, orphans go to init, not to this process (for a daemon it starts on
-    purpose, such as the shared router)."""
-    if not is_subreaper():
-        yield
-        return
-    set_prctl(PR_SET_CHILD_SUBREAPER, 0)
-    try:
-        yield
-    finally:
-        set_prctl(PR_SET_CHILD_SUBREAPER, 1)

@@ -20,7 +20,7 @@ import os
 import signal
 import subprocess
 
-from launchkit.runtime.containment import own_helpers
+from launchkit.own_process import own_helpers
 
 # Groups are kept in one string " g1 g2 ... " so that a line "-g" can take one out without a
 # fork: ${gs%% g *} is what comes before it, ${gs#* g } what comes after.

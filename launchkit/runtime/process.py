@@ -26,7 +26,7 @@ from launchkit.description.process_spec import ProcessSpec
 from launchkit.errors import LaunchFileError, LaunchkitError
 from launchkit.runtime.lifecycle import Escalation, Lifecycle, RespawnPolicy, State
 from launchkit.runtime.lines import LineBuffer
-from launchkit.runtime.startup_sigint import holds_sigint, sigint_blocked
+from launchkit.startup_sigint import holds_sigint, sigint_blocked
 
 #: The most a single read of one stream takes (then the loop looks at everything else).
 READ_CHUNK = 64 * 1024

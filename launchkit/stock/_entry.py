@@ -20,7 +20,7 @@ from typing import Any, NoReturn
 import launchkit.ros as ros
 from launchkit._exit import exit_promptly
 from launchkit.errors import LaunchkitError
-from launchkit.runtime.startup_sigint import release_sigint
+from launchkit.startup_sigint import release_sigint
 
 #: Seconds the ROS layer's shutdown may take before the node exits regardless.
 SHUTDOWN_BOUND = 2.0
@@ -31,7 +31,7 @@ def run(main: Callable[[list[str]], int], program: str) -> NoReturn:
 
     Then exit promptly (see :mod:`launchkit._exit`) with ``main``'s status, the error's (2 for
     a user mistake), or 0 after Ctrl-C (``KeyboardInterrupt``, also one that came while the
-    node's modules were imported: :mod:`launchkit.runtime.startup_sigint`) or SIGTERM (the
+    node's modules were imported: :mod:`launchkit.startup_sigint`) or SIGTERM (the
     spinning executor's ``ExternalShutdownException``): a stop request is a normal end for a
     stock node.
     """

@@ -31,7 +31,7 @@ from launchkit.packages import PackageIndex
 CHECKED_KINDS = ("depend", "build_depend", "exec_depend")
 
 #: Names of ROS packages that launchkit itself stands in for (the rclpy face, the launch
-#: stand-ins, tf2), whatever else is installed.
+#: stand-ins, tf2, sensor_msgs_py), whatever else is installed.
 PROVIDED = frozenset(
     {
         "rclpy",
@@ -46,6 +46,7 @@ PROVIDED = frozenset(
         "tf2_ros",
         "tf2_ros_py",
         "tf2_geometry_msgs",
+        "sensor_msgs_py",
     }
 )
 #: rosdep keys of Python packages (installed with pip) and ROS build tools.

@@ -17,6 +17,7 @@ import pytest
 
 from launchkit.runtime.containment import SWEEP_PERIOD, LaunchCgroup, cgroup_v2_path
 from tests.engine.launcher import Launcher, wait_gone
+from tests.support import sleepers
 
 
 def _cgroups_writable() -> bool:
@@ -43,19 +44,6 @@ def marker() -> Iterator[str]:
     yield number
     for pid in sleepers(number):
         os.kill(pid, signal.SIGKILL)
-
-
-def sleepers(marker: str) -> list[int]:
-    """The processes sleeping ``marker`` seconds."""
-    found = []
-    for entry in Path("/proc").iterdir():
-        try:
-            command = (entry / "cmdline").read_bytes().split(b"\0")
-        except OSError:
-            continue
-        if command[:2] == [b"sleep", marker.encode()]:
-            found.append(int(entry.name))
-    return found
 
 
 def launch_cgroups() -> set[str]:

@@ -29,6 +29,7 @@ from launchkit.ros.session import client_config, close_session, open_session
 
 sys.path.insert(0, str(Path(__file__).resolve().parent.parent / "ros"))
 from launchkit.testing._isolation import free_loopback_port
+from tests.support import sleepers
 
 #: How long a forged message is given to (wrongly) take effect.
 WINDOW = 2.0
@@ -81,15 +82,7 @@ class Lab:
 
     def sleepers(self) -> list[int]:
         """Pids of this test's sleeping processes still alive."""
-        found = []
-        for entry in Path("/proc").iterdir():
-            try:
-                command = (entry / "cmdline").read_bytes().split(b"\0")
-            except OSError:
-                continue
-            if command[:2] == [b"sleep", self.marker.encode()]:
-                found.append(int(entry.name))
-        return found
+        return sleepers(self.marker)
 
     def wait_sleepers(self, count: int, timeout: float = 10.0) -> list[int]:
         """The sleeping processes, once there are ``count`` (a sleeper says it is up just
@@ -332,6 +325,5 @@ def wait_for_lines(proc: Proc, *texts: str, timeout: float = 30.0) -> None:
 
 def _all(proc: Proc) -> list[str]:
     """Every line ``proc`` printed so far."""
-    while not proc.lines.empty():
-        proc.seen.append(proc.lines.get())
+    proc.rest()
     return proc.seen

@@ -30,7 +30,7 @@ def contexts(router: str) -> Iterator[Callable[..., Context]]:
 
     def make(domain: int | None = None) -> Context:
         context = Context()
-        context.init([], domain=domain)
+        context.init([], domain_id=domain)
         made.append(context)
         return context
 

@@ -93,25 +93,6 @@ def test_a_module_launch_is_shared_and_stopped_after_the_module(talker_test):
     result.stdout.fnmatch_lines(["*- launchkit talker.launch.xml: talker-1 -*"])
 
 
-def test_a_leftover_process_fails_the_test_at_teardown(pytester):
-    escape = LAUNCH_DIR / "escape.launch.xml"
-    pytester.makepyfile(
-        f"""
-        def test_escape(launch):
-            launch({str(escape)!r}).process("escaper").wait_output("escaped pid", timeout=5)
-        """
-    )
-    result = pytester.runpytest("-p", "no:cacheprovider")
-    result.assert_outcomes(passed=1, errors=1)
-    result.stdout.fnmatch_lines(
-        [
-            "*ERROR at teardown of test_escape*",
-            "E *launchkit.testing.ProcessLeftBehind: "
-            "1 process(es) of escape.launch.xml survived its teardown*",
-        ]
-    )
-
-
 def test_a_bad_timeout_scale_stops_the_run_before_any_test(pytester, monkeypatch):
     pytester.makepyfile("def test_nothing():\n    pass\n")
     monkeypatch.setenv("LAUNCHKIT_TIMEOUT_SCALE", "0")

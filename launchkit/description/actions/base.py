@@ -27,7 +27,8 @@ class Action:
 
     def __init__(self, location: Location | None = None, condition: Condition | None = None):
         self.location = location
-        if condition is not None and not isinstance(condition, Condition):  # a Python file's
+        # a Python file's condition is anything with evaluate(context), as in ROS
+        if condition is not None and not callable(getattr(condition, "evaluate", None)):
             raise LaunchFileError(
                 f"the condition of {type(self).__name__} is a {type(condition).__name__}, "
                 "not a condition",

@@ -24,7 +24,7 @@ import time
 from pathlib import Path
 
 from launchkit.description.substitutions.sandbox_names import LimitError, Limits, SandboxError
-from launchkit.runtime.containment import own_helpers
+from launchkit.own_process import own_helpers
 
 __all__ = ["Evaluator", "LimitError", "Limits", "SandboxError", "evaluate"]
 

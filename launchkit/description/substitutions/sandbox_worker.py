@@ -23,7 +23,7 @@ from launchkit.description.substitutions.sandbox import (
     SandboxError,
     evaluate,
 )
-from launchkit.runtime.prctl import die_with_parent
+from launchkit.own_process import die_with_parent
 
 
 def _address_space() -> int:

@@ -72,7 +72,7 @@ def _owned_by_the_launch(folder: Path) -> bool:
     its last process ended (its orphan guard even if everything is SIGKILLed), so a plugin node
     it started just before a Ctrl-C still finds its file after the server is gone."""
     launch_folder = os.environ.get(RUN_TMPDIR)
-    return bool(launch_folder) and folder.parent == Path(launch_folder)
+    return launch_folder is not None and folder.parent == Path(launch_folder)
 
 
 def plugin_command(
