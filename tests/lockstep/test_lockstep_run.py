@@ -8,6 +8,7 @@ import os
 import re
 import subprocess
 import sys
+import time
 from pathlib import Path
 
 from launchkit.testing._isolation import free_loopback_port
@@ -44,6 +45,24 @@ def test_timers_and_messages_follow_the_simulated_clock(tmp_path: Path) -> None:
 
 def test_a_rate_loop_stops_the_clock_at_each_wake_up(tmp_path: Path) -> None:
     assert_ticks_every_quarter_second(run_lockstep("rate.launch.xml", 2.0, tmp_path))
+
+
+def test_rtf_caps_the_pace(tmp_path: Path) -> None:
+    """At --rtf 2 the 1.75 simulated seconds from the first tick to the last take at least
+    0.875 s of wall time (unpaced they take a small fraction of that)."""
+    env = {**os.environ, "PYTHON": sys.executable, "ROS_LOG_DIR": str(tmp_path / "log")}
+    command = [sys.executable, "-m", "launchkit", "run", "--router"]
+    command += [f"tcp/127.0.0.1:{free_loopback_port()}", str(HERE / "ticker.launch.xml")]
+    command += ["--lockstep", "--rtf", "2", "--until", "2"]
+    seen: dict[str, float] = {}
+    with subprocess.Popen(command, env=env, stdout=subprocess.PIPE, text=True) as launch:
+        assert launch.stdout is not None
+        for line in launch.stdout:
+            for tick in ("tick 1 at", "tick 8 at"):
+                if tick in line:
+                    seen[tick] = time.monotonic()
+        assert launch.wait(timeout=60) == 0
+    assert seen["tick 8 at"] - seen["tick 1 at"] >= 0.875 * 0.95
 
 
 def test_until_needs_lockstep(tmp_path: Path) -> None:
