@@ -48,16 +48,19 @@ def children_cpu() -> float:
     return usage.ru_utime + usage.ru_stime
 
 
-def launch(*options: str, wall_limit: float | None = None) -> tuple[str, float, float]:
-    """Run the scenario with ``options``; its output, wall seconds and CPU seconds. With
-    ``wall_limit`` it is stopped by Ctrl-C after that many wall seconds."""
+def launch(
+    *options: str, args: tuple[str, ...] = (), wall_limit: float | None = None
+) -> tuple[str, float, float]:
+    """Run the scenario with ``options`` and launch arguments ``args``; its output, wall
+    seconds and CPU seconds. With ``wall_limit`` it is stopped by Ctrl-C after that many wall
+    seconds."""
     env = {
         **os.environ,
         "PYTHON": sys.executable,
         "ROS_LOG_DIR": tempfile.mkdtemp(prefix="lockstep-bench-"),
     }
-    command = [sys.executable, "-m", "launchkit", "run", "--router"]
-    command += [f"tcp/127.0.0.1:{free_port()}", str(LAUNCH), *options]
+    command = [sys.executable, "-m", "launchkit", "run"]
+    command += [*options, "--router", f"tcp/127.0.0.1:{free_port()}", str(LAUNCH), *args]
     cpu = children_cpu()
     started = time.perf_counter()
     with subprocess.Popen(
@@ -72,10 +75,10 @@ def launch(*options: str, wall_limit: float | None = None) -> tuple[str, float, 
     return out, wall, children_cpu() - cpu
 
 
-def speed(until: float, *extra: str) -> tuple[float, str]:
+def speed(until: float, *args: str) -> tuple[float, str]:
     """Simulated seconds per wall second past start-up: runs to 2 s and to ``until``."""
-    _, short, _ = launch("--lockstep", "--until", "2", *extra)
-    out, long, _ = launch("--lockstep", "--until", str(until), *extra)
+    _, short, _ = launch("--lockstep", "--until", "2", args=args)
+    out, long, _ = launch("--lockstep", "--until", str(until), args=args)
     return (until - 2.0) / (long - short), out
 
 

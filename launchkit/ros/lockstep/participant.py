@@ -61,6 +61,10 @@ class Participant:
         self._last: Report | None = None
         self._sent_at = 0.0
         self._watching_graph = False
+        # the graph's subscriptions by topic, as of the graph's version _seen_version
+        self._graph_version = 0
+        self._seen_version = -1
+        self._subscriptions_seen: dict[str, list[str]] = {}
         self._sleeps: dict[int, int] = {}  # thread id -> the simulated time it sleeps until
         self._woken: set[int] = set()  # threads woken by the clock, not sleeping or spinning
         self._holds = 0  # blocks of code that keep the time where it is (see hold)
@@ -197,14 +201,21 @@ class Participant:
         if not self._watching_graph:
             self._watching_graph = True
             graph.add_listener(self._graph_changed)
-        by_topic: dict[str, list[str]] = {}
-        for token in graph.tokens("MS"):
-            by_topic.setdefault(token.topic, []).append(token.gid.hex())
-        return {gid: sorted(by_topic.get(topic, [])) for gid, (topic, _) in sent.items()}
+        version = self._graph_version
+        by_topic = self._subscriptions_seen
+        if self._seen_version != version:  # the graph's subscriptions changed since
+            by_topic = {}
+            for token in graph.tokens("MS"):
+                by_topic.setdefault(token.topic, []).append(token.gid.hex())
+            for subscriptions in by_topic.values():
+                subscriptions.sort()
+            self._subscriptions_seen, self._seen_version = by_topic, version
+        return {gid: by_topic.get(topic, []) for gid, (topic, _) in sent.items()}
 
     def _graph_changed(self, token: Any, appeared: bool) -> None:
         # a Zenoh thread: a subscription appeared or left; the executors report it
         if token.kind == "MS":
+            self._graph_version += 1
             self._wake_executors()
 
     def _send(self, report: Report) -> None:

@@ -29,7 +29,7 @@ from __future__ import annotations
 
 from dataclasses import dataclass, field
 
-from launchkit.ros.lockstep.report import Report
+from launchkit.ros.lockstep.report import Matched, Report, Sent
 
 
 @dataclass
@@ -58,19 +58,16 @@ class Quiescence:
         """Whether a participant of process ``pid`` (or of a child of it) has reported."""
         return any(pid in r.pids for r in self.reports.values())
 
-    def publishers(self) -> dict[str, tuple[str, int]]:
-        """Every participant's publishers: GID -> (topic, last sequence number sent)."""
-        sent: dict[str, tuple[str, int]] = {}
-        for report in self.reports.values():
-            sent.update(report.sent)
-        return sent
+    def publishers(self, extra_sent: Sent) -> dict[str, list[tuple[str, int]]]:
+        """Every participant's publishers and ``extra_sent`` (the authority's own), by topic:
+        (GID, last sequence number sent)."""
+        by_topic: dict[str, list[tuple[str, int]]] = {}
+        for sent in [*(r.sent for r in self.reports.values()), extra_sent]:
+            for gid, (topic, seq) in sent.items():
+                by_topic.setdefault(topic, []).append((gid, seq))
+        return by_topic
 
-    def waiting_for(
-        self,
-        time_ns: int,
-        extra_sent: dict[str, tuple[str, int]],
-        extra_matched: dict[str, list[str]],
-    ) -> str | None:
+    def waiting_for(self, time_ns: int, extra_sent: Sent, extra_matched: Matched) -> str | None:
         """What keeps the time at ``time_ns`` (None: it may advance). ``extra_sent`` and
         ``extra_matched`` add the authority's own publishers (``/clock``)."""
         for report in self.reports.values():
@@ -78,33 +75,18 @@ class Quiescence:
                 return f"{report.name} has not reached the time yet"
             if not report.idle:
                 return f"{report.name} is busy"
-        sent = {**self.publishers(), **extra_sent}
-        discovery = self._undiscovered(sent, extra_matched)
-        if discovery is not None:
-            return discovery
-        by_topic: dict[str, list[tuple[str, int]]] = {}
-        for gid, (topic, seq) in sent.items():
-            by_topic.setdefault(topic, []).append((gid, seq))
+        by_topic = self.publishers(extra_sent)
+        matched: dict[str, set[str]] = {gid: set(subs) for gid, subs in extra_matched.items()}
+        for report in self.reports.values():
+            matched.update((gid, set(subs)) for gid, subs in report.matched.items())
         for report in self.reports.values():
             for sub_gid, (topic, handled) in report.handled.items():
                 for pub_gid, seq in by_topic.get(topic, ()):
+                    if sub_gid not in matched.get(pub_gid, ()):
+                        return f"a publisher of {topic} has not discovered {report.name} yet"
                     baseline = self.baselines.get((sub_gid, pub_gid))
                     if baseline is not None and seq > baseline and handled.get(pub_gid, 0) < seq:
                         return f"{report.name} has not handled every message on {topic}"
-        return None
-
-    def _undiscovered(
-        self, sent: dict[str, tuple[str, int]], extra_matched: dict[str, list[str]]
-    ) -> str | None:
-        """A subscription that a publisher on its topic has not discovered yet, if any."""
-        matched = dict(extra_matched)
-        for report in self.reports.values():
-            matched.update(report.matched)
-        for report in self.reports.values():
-            for sub_gid, (topic, _) in report.handled.items():
-                for pub_gid, (pub_topic, _) in sent.items():
-                    if pub_topic == topic and sub_gid not in matched.get(pub_gid, ()):
-                        return f"a publisher of {topic} has not discovered {report.name} yet"
         return None
 
     @staticmethod
@@ -126,12 +108,11 @@ class Quiescence:
         later = [t for t in due if t > after_ns]
         return min(later) if later else None
 
-    def start_pairs(self, extra_sent: dict[str, tuple[str, int]]) -> None:
+    def start_pairs(self, extra_sent: Sent) -> None:
         """At an advance: count from now every (publisher, subscription) pair on one topic
         not counted yet."""
-        sent = {**self.publishers(), **extra_sent}
+        by_topic = self.publishers(extra_sent)
         for report in self.reports.values():
             for sub_gid, (topic, _) in report.handled.items():
-                for pub_gid, (pub_topic, seq) in sent.items():
-                    if pub_topic == topic:
-                        self.baselines.setdefault((sub_gid, pub_gid), seq)
+                for pub_gid, seq in by_topic.get(topic, ()):
+                    self.baselines.setdefault((sub_gid, pub_gid), seq)
