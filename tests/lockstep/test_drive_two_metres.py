@@ -37,11 +37,8 @@ def test_the_robot_drives_two_metres_in_simulated_time(launch):
 
 
 def test_the_docs_show_this_file():
-    """docs/testing.md's lockstep example is this file, from ``import math`` to the line above
-    this test."""
-    from pathlib import Path
+    """docs/testing.md's lockstep example is this file, from ``import math`` to the
+    line above this test."""
+    from tests.support import assert_docs_show
 
-    here = Path(__file__).read_text()
-    example = here[here.index("import math") : here.index("\n\n\ndef test_the_docs_show_this_file")]
-    docs = (Path(__file__).parents[2] / "docs" / "testing.md").read_text()
-    assert f"```python\n{example}\n```" in docs
+    assert_docs_show(__file__, "import math", "testing.md")
