@@ -36,6 +36,7 @@ ROS_COMMANDS = (
     "wtf",
     "router",
     "tf",
+    "action",
 )
 
 

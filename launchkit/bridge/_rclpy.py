@@ -58,14 +58,31 @@ def import_rclpy() -> ModuleType:
     return rclpy
 
 
+#: an action's services and feedback message, as rosidl's action class holds them in ``Impl``
+_ACTION_PARTS = {
+    "_SendGoal": "SendGoalService",
+    "_GetResult": "GetResultService",
+    "_FeedbackMessage": "FeedbackMessage",
+}
+
+
 def message_class(type_name: str) -> Any | None:
-    """rclpy's class for ``pkg/msg/Name`` or ``pkg/srv/Name``; None when not installed."""
+    """rclpy's class for ``pkg/msg/Name``, ``pkg/srv/Name`` or an action's part
+    (``pkg/action/Name_SendGoal``, ``_GetResult``, ``_FeedbackMessage``); None when not
+    installed."""
     package, kind, name = type_name.split("/")
     try:
         module = importlib.import_module(f"{package}.{kind}")
     except ImportError:
         return None
-    return getattr(module, name, None)
+    found = getattr(module, name, None)
+    if found is not None or kind != "action":
+        return found
+    for suffix, part in _ACTION_PARTS.items():
+        if name.endswith(suffix):
+            action = getattr(module, name[: -len(suffix)], None)
+            return None if action is None else getattr(action.Impl, part, None)
+    return None
 
 
 def to_rclpy_qos(qos: QoSProfile) -> Any:

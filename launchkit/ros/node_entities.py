@@ -129,10 +129,12 @@ class EntityMethods:
         qos_profile: QoSProfile | int = qos_profile_services_default,
         callback_group: CallbackGroup | None = None,
         raw: bool = False,
+        service_class: type[Service] = Service,
     ) -> Service:
         """Serve ``srv_name``: ``callback(request, response)`` returns the response
-        (``raw=True``: bytes in, bytes or a Future of them out)."""
-        service = Service(
+        (``raw=True``: bytes in, bytes or a Future of them out; ``service_class``: a subclass
+        that answers differently, as an action server's services do)."""
+        service = service_class(
             self,  # type: ignore[arg-type]
             srv_type,
             srv_name,

@@ -182,6 +182,12 @@ class Service(_ServiceEntity):
         except Exception as exc:
             fail(f"invalid {self.type_name} request: {exc}")
             return
+        await self._respond(request, reply, fail)
+
+    async def _respond(
+        self, request: Any, reply: Callable[[bytes], None], fail: Callable[[str], None]
+    ) -> None:
+        """Answer a valid request (a subclass may answer differently)."""
         try:
             response = await await_or_execute(self.callback, request, self.srv_type.Response())
             if getattr(response, "_TYPE_NAME", None) != self.type_name + "_Response":

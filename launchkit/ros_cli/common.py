@@ -11,6 +11,7 @@ from typing import TYPE_CHECKING, Any
 
 from launchkit.envvars import ROUTER
 from launchkit.errors import RuntimeLaunchError, UserError
+from launchkit.ros.action.names import action_of_feedback
 from launchkit.ros.endpoints import router_endpoint
 from launchkit.ros.keyexpr import Token, domain_id
 from launchkit.ros.logging import get_logger
@@ -157,10 +158,6 @@ def print_names(found: dict[str, list[str]], show_types: bool) -> None:
 
 # An action NAME is served on NAME/_action/{send_goal,cancel_goal,get_result} and published on
 # NAME/_action/{feedback,status}; rcl_action finds actions by their feedback topic.
-_ACTION_FEEDBACK = "/_action/feedback"
-_FEEDBACK_TYPE_SUFFIX = "_FeedbackMessage"
-
-
 def action_names_and_types(tokens: Iterable[Token], role: str) -> dict[str, list[str]]:
     """The actions of ``tokens`` and their types, as rcl_action finds them: a ``server``
     publishes, a ``client`` subscribes to ``NAME/_action/feedback`` of type
@@ -168,13 +165,9 @@ def action_names_and_types(tokens: Iterable[Token], role: str) -> dict[str, list
     kind = "MP" if role == "server" else "MS"
     found: dict[str, set[str]] = {}
     for t in tokens:
-        if (
-            t.kind == kind
-            and t.topic.endswith(_ACTION_FEEDBACK)
-            and t.type_name.endswith(_FEEDBACK_TYPE_SUFFIX)
-        ):
-            name = t.topic[: -len(_ACTION_FEEDBACK)]
-            found.setdefault(name, set()).add(t.type_name[: -len(_FEEDBACK_TYPE_SUFFIX)])
+        action = action_of_feedback(t.topic, t.type_name) if t.kind == kind else None
+        if action is not None:
+            found.setdefault(action[0], set()).add(action[1])
     return {name: sorted(found[name]) for name in sorted(found)}
 
 

@@ -29,6 +29,7 @@ FAMILIES = {
     "wtf": "launchkit.ros_cli.doctor_commands",
     "router": "launchkit.ros_cli.router_commands",
     "tf": "launchkit.ros_cli.tf_commands",
+    "action": "launchkit.ros_cli.action_commands",
 }
 
 

@@ -16,6 +16,7 @@ from launchkit.ros_cli.common import (
     hidden_name,
     names_and_types,
     node_names,
+    visible,
 )
 
 
@@ -31,7 +32,9 @@ def add_parser(commands: Any) -> None:
     p = sub.add_parser("info", help="Output information about a node")
     p.add_argument("node_name")
     p.add_argument(
-        "--include-hidden", action="store_true", help="show hidden topics, services and actions"
+        "--include-hidden",
+        action="store_true",
+        help="show hidden topics, services and actions (and find a hidden node)",
     )
     add_router_option(p)
     p.set_defaults(run=_info)
@@ -68,8 +71,13 @@ _SECTIONS = (
 def _info(args: argparse.Namespace) -> int:
     wanted = absolute_node_name(args.node_name)
     tokens = [t for t in graph_once(args) if t.node_fqn == wanted]
-    count = sum(t.kind == "NN" for t in tokens)
+    # as ros2 node info: a hidden node (its name starts with "_") is found only when asked for
+    count = sum(t.kind == "NN" and visible(t, args.include_hidden) for t in tokens)
     if not count:
+        if any(t.kind == "NN" for t in tokens):
+            raise CliUsageError(
+                f"{wanted} is a hidden node", expected="--include-hidden to show hidden nodes"
+            )
         raise CliUsageError(
             f"unknown node {wanted}", expected="a node listed by `launchkit node list`"
         )

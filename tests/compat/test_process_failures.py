@@ -39,12 +39,15 @@ def test_a_missing_working_folder_fails_only_its_process(launch_dir: Path) -> No
     path.write_text(CWD.format(missing=missing))
     ran = run_launch(launch_dir, "cwd.launch.py")
     assert ran.status == 0, ran.text
-    assert ran.launch_lines() == [
+    lines = ran.launch_lines()
+    # the timer counts wall time from the launch's start: on a busy machine it may fire before
+    # the process's Python has printed its first line, so only its presence is compared
+    assert "[INFO] [launch.user]: timer fired" in lines
+    assert [line for line in lines if "timer fired" not in line] == [
         f"[ERROR] [lost-1]: could not start process: its working folder '{missing}' does not "
         f"exist ({path}:8)",
         "[INFO] [fine-2]: process started with pid [N]",
         "[fine-2] fine",
-        "[INFO] [launch.user]: timer fired",
         "[fine-2] still fine",
         "[INFO] [fine-2]: process has finished cleanly [pid N]",
     ]

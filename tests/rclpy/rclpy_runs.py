@@ -51,6 +51,8 @@ def environment(flavour: str, router: str, domain: int) -> dict[str, str]:
         env["RMW_IMPLEMENTATION"] = "rmw_fastrtps_cpp"
     else:
         env[ROUTER] = router
+        # the wheels' share/ (where installed): launchkit reads test_msgs from its files there
+        env["AMENT_PREFIX_PATH"] = sys.prefix
         env.update(face.environment(env))
     return env
 
@@ -58,9 +60,9 @@ def environment(flavour: str, router: str, domain: int) -> dict[str, str]:
 class NodeRun:
     """One node file running; its output lines read with deadlines."""
 
-    def __init__(self, name: str, env: dict[str, str]) -> None:
+    def __init__(self, name: str, env: dict[str, str], args: tuple[str, ...] = ()) -> None:
         self.proc = subprocess.Popen(
-            [sys.executable, str(NODES / name)],
+            [sys.executable, str(NODES / name), *args],
             stdout=subprocess.PIPE,
             stderr=subprocess.PIPE,
             text=True,
@@ -150,9 +152,9 @@ class Runs:
         self.env = environment(flavour, router, domain_id())
         self.runs: list[NodeRun] = []
 
-    def start(self, name: str) -> NodeRun:
-        """Run ``nodes/NAME``."""
-        run = NodeRun(name, self.env)
+    def start(self, name: str, *args: str) -> NodeRun:
+        """Run ``nodes/NAME`` with ``args``."""
+        run = NodeRun(name, self.env, args)
         self.runs.append(run)
         return run
 

@@ -65,6 +65,26 @@ def uncaught_ctrl_c(runs: Runs) -> str:
     return f"status {status}\n{out}first: {lines[0]}\nlast: {lines[-1]}\n"
 
 
+def actions(runs: Runs) -> str:
+    """A client sends goals to an action server: feedback and result, a rejected goal, a
+    canceled one, an aborted one; the server is stopped with Ctrl-C."""
+    server = runs.start("fibonacci_server.py")
+    server.expect("serving")
+    ended = runs.start("fibonacci_client.py").finish()
+    return _both(("client", ended), ("server", server.finish(signal.SIGINT)))
+
+
+def two_action_clients(runs: Runs) -> str:
+    """Two clients send goals to one server at once; each follows its own goal (the server's
+    lines interleave, so only its status is compared)."""
+    server = runs.start("fibonacci_server.py")
+    server.expect("serving")
+    racers = [runs.start("fibonacci_racer.py", order) for order in ("6", "9")]
+    ended = [racer.finish() for racer in racers]
+    status, _, _ = server.finish(signal.SIGINT)
+    return _both(("racer 6", ended[0]), ("racer 9", ended[1])) + f"server status {status}\n"
+
+
 def _both(*runs: tuple[str, tuple[int, str, str]]) -> str:
     return "".join(
         f"== {name} (status {status})\n{out}-- stderr\n{err}" for name, (status, out, err) in runs

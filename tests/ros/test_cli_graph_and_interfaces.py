@@ -91,6 +91,30 @@ def test_node_list_and_info(graph: list[Child]) -> None:
     ]
 
 
+def test_node_info_hides_hidden_names_and_nodes_unless_asked() -> None:
+    # as ros2 node info: a topic or service with a part starting with "_" is left out, and a
+    # hidden node is not found, unless --include-hidden
+    with graph_of("hidden_parts"):
+        plain = sections(launchkit("node", "info", "/hider").stdout)
+        assert plain["Publishers"] == [
+            "    /parameter_events: rcl_interfaces/msg/ParameterEvent",
+            "    /rosout: rcl_interfaces/msg/Log",
+            "    /shown: std_msgs/msg/String",
+        ]
+        assert not [line for line in plain["Service Servers"] if "/_" in line]
+        everything = sections(launchkit("node", "info", "/hider", "--include-hidden").stdout)
+        assert "    /_private/state: std_msgs/msg/String" in everything["Publishers"]
+        assert "    /hider/_secret: std_srvs/srv/Trigger" in everything["Service Servers"]
+
+        refused = launchkit("node", "info", "/_helper")
+        assert refused.returncode == 2 and refused.stdout == ""
+        assert refused.stderr == (
+            "error: /_helper is a hidden node (expected --include-hidden to show hidden nodes)\n"
+        )
+        helper = sections(launchkit("node", "info", "/_helper", "--include-hidden").stdout)
+        assert helper["Subscribers"] == ["    /shown: std_msgs/msg/String"]
+
+
 @pytest.fixture(scope="module")
 def workspace(tmp_path_factory: pytest.TempPathFactory) -> Path:
     """An ament prefix with package ``my_interfaces``: a message, a service, an action, a

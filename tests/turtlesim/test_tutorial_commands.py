@@ -128,7 +128,7 @@ def test_param_set_changes_the_background(sim: Program, probe: Any) -> None:
         launchkit("param set /turtlesim background_r 69")
 
 
-def test_teleop_key_drives_turtle1_with_the_arrow_keys(
+def test_teleop_key_drives_turtle1_with_the_arrow_and_action_keys(
     sim: Program, probe: Any, poses: Any
 ) -> None:
     got = poses("turtle1")
@@ -147,8 +147,18 @@ def test_teleop_key_drives_turtle1_with_the_arrow_keys(
         spin_until(probe, lambda: any(p.linear_velocity == 2.0 for p in got), "turtle1 forward")
         child.send("\x1b[D")  # the left arrow: turn left at scale_angular (2.0)
         spin_until(probe, lambda: any(p.angular_velocity == 2.0 for p in got), "turtle1 turning")
-        child.send("g")
-        child.expect_exact("launchkit has no action client yet")
+        child.send("r")  # rotate_absolute to 1.5708 (north)
+        spin_until(
+            probe, lambda: any(abs(p.theta - 1.5708) < 0.02 for p in got), "turtle1 facing north"
+        )
+        child.send("d")  # to 3.1416 (west), canceled by F on its way there
+        spin_until(probe, lambda: any(p.theta > 1.8 for p in got), "turtle1 turning west")
+        child.send("f")
+        spin_until(
+            probe,
+            lambda: any(p.angular_velocity == 0.0 and 1.8 < p.theta < 3.0 for p in got),
+            "turtle1 stopped short of west",
+        )
         child.send("q")
         child.expect_exact("EXIT=0", timeout=DEADLINE)
     finally:
@@ -168,8 +178,11 @@ def test_draw_square_resets_and_drives_the_first_side(
     turn = square.wait_log("New goal", square.err.index(first))
     found = re.search(r"New goal \[(\S+) (\S+), 1\.570796\]$", turn)
     assert turn.startswith("[INFO] ") and found, turn
-    # where the first side ended (within 0.1 m of its goal), a quarter turn on
-    assert (float(found[1]), float(found[2])) == pytest.approx((7.544, 5.544), abs=0.12)
+    # where the first side ended, a quarter turn on: straight east, stopped once within 0.1 m
+    # of its goal (a busy machine's late stop command lets it run on a little, as in Jazzy)
+    x, y = float(found[1]), float(found[2])
+    assert y == pytest.approx(5.544445, abs=1e-3)
+    assert 7.544445 - 0.1 < x < 7.544445 + 0.5
     square.stop()
 
 

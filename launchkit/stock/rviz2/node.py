@@ -11,13 +11,15 @@ picks a free port), ``address`` (``127.0.0.1``: this machine only), ``allowed_or
 whose mesh and texture files may be served besides the package share folders) and
 ``robot_description`` (a URDF given at start: the folders of its meshes are trusted too).
 Under ``launchkit run`` the ``viewer: http://...`` line goes to the launcher's console whatever
-the node's ``output``.
+the node's ``output``. A port that another launchkit viewer holds (turtlesim_node's, run beside
+a launch with rviz2 as the tutorials do) makes rviz2 serve on a free port, and say so.
 """
 
 from __future__ import annotations
 
 import argparse
 import sys
+from collections.abc import Callable
 from pathlib import Path
 from typing import Any
 
@@ -31,7 +33,8 @@ from launchkit.stock.rviz2.cli import parse_args
 from launchkit.stock.rviz2.config import RvizConfig, default_config, load_config
 from launchkit.stock.rviz2.hub import Hub
 from launchkit.stock.rviz2.ros_link import RosLink
-from launchkit.stock.rviz2.server import ViewerServer
+from launchkit.stock.rviz2.server import PortInUse, ViewerServer
+from launchkit.stock.rviz2.viewer_probe import is_viewer
 
 
 def _param(node: ros.Node, name: str, default: Any, expected: str) -> Any:
@@ -96,6 +99,28 @@ def main(argv: list[str]) -> int:
     return 0
 
 
+def start_server(
+    make_server: Callable[[int], ViewerServer], port: int, address: str
+) -> tuple[ViewerServer, str]:
+    """A started server on ``port`` and the line that announces it. When another launchkit
+    viewer holds the port (turtlesim_node's, or another launch's rviz2), a free port instead,
+    and the line says why; a port another program holds stays a :class:`PortInUse` error."""
+    server = make_server(port)
+    try:
+        server.start()
+    except PortInUse:
+        if not (port and is_viewer(address, port)):
+            raise
+    else:
+        return server, f"viewer: {server.url} (open it in a browser)"
+    server = make_server(0)
+    server.start()
+    return server, (
+        f"viewer: {server.url} (open it in a browser; port {port} already serves another "
+        "launchkit viewer, without this rviz2's displays)"
+    )
+
+
 def serve(node: ros.Node, args: argparse.Namespace, config: RvizConfig) -> None:
     """Serve the viewer for ``node`` until shutdown (Ctrl-C or SIGTERM)."""
     if args.ignored:
@@ -124,12 +149,14 @@ def serve(node: ros.Node, args: argparse.Namespace, config: RvizConfig) -> None:
             catalog.trust_description(description)
         hub = Hub(link, catalog)
         logger = node.get_logger()
-        server = ViewerServer(
-            hub, policy, port, {"config": config.to_page()}, lambda text: logger.warn(text)
-        )
-        server.start()
+
+        def make_server(on_port: int) -> ViewerServer:
+            hello = {"config": config.to_page()}
+            return ViewerServer(hub, policy, on_port, hello, lambda text: logger.warn(text))
+
+        server, line = start_server(make_server, port, address)
         link.connect(hub, server)
-        announce(f"viewer: {server.url} (open it in a browser)")
+        announce(line)
         for line in connect_lines(server, config):  # after the announcement: tests rely on it
             print(line, flush=True)
         if not policy.loopback_only:

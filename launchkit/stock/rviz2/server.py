@@ -47,6 +47,10 @@ BUSY_PORT_HINT = (
 Log = Callable[[str], object]
 
 
+class PortInUse(UserError):
+    """The port asked for is taken (by another viewer, or by another program)."""
+
+
 class ViewerServer:
     """Serves the page and the hub's data on ``address:port`` (``port`` 0: a free one)."""
 
@@ -86,7 +90,7 @@ class ViewerServer:
                 expected="a machine not overloaded",
             )
         if isinstance(self._error, OSError) and self._error.errno == errno.EADDRINUSE:
-            raise UserError(
+            raise PortInUse(
                 f"cannot serve the viewer on {self.address}:{self._requested_port}: the port is "
                 "already in use (another viewer, or another program, listens there)",
                 expected="a free port",

@@ -4,9 +4,9 @@
 (turtlesim/Color) out at every update; the services ``set_pen``, ``teleport_relative`` and
 ``teleport_absolute``. They live as long as the turtle: ``/kill`` and ``/reset`` destroy them.
 
-The ``rotate_absolute`` action server belongs here too, made beside the services, its accepted
-goals handed to :meth:`Turtle.accept_goal <launchkit.stock.turtlesim.world.Turtle.accept_goal>`
-(the update drives them).
+The ``rotate_absolute`` action server (:mod:`.rotation`) is made beside the services, its
+accepted goals handed to :meth:`Turtle.accept_goal
+<launchkit.stock.turtlesim.world.Turtle.accept_goal>` (the update drives them).
 """
 
 from __future__ import annotations
@@ -20,6 +20,7 @@ from launchkit.ros.msgs.geometry_msgs.msg import Twist
 from launchkit.ros.msgs.turtlesim.msg import Color, Pose
 from launchkit.ros.msgs.turtlesim.srv import SetPen, TeleportAbsolute, TeleportRelative
 from launchkit.stock.turtlesim.qos import TOPIC_QOS
+from launchkit.stock.turtlesim.rotation import rotate_absolute_server
 from launchkit.stock.turtlesim.world import PoseReport, Teleport, Turtle
 
 #: ``on_command(turtle, twist)``: what the simulator does with a velocity command.
@@ -49,6 +50,7 @@ class TurtleEndpoints:
         ]
         for service in services:
             self._destroyers.append(functools.partial(node.destroy_service, service))
+        self._destroyers.append(rotate_absolute_server(node, turtle).destroy)
 
     def publish(self, pose: PoseReport, color: tuple[int, int, int]) -> None:
         """Publish the turtle's pose and the colour under it."""

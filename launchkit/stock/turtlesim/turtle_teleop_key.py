@@ -2,9 +2,9 @@
 
 As Jazzy's: node ``teleop_turtle``, parameters ``scale_linear`` and ``scale_angular`` (2.0 each,
 read at every key, so ``param set`` changes them while it runs), one twist a key press, the same
-instructions printed at start, ``q`` to quit (Ctrl-C too). The keys ``G|B|V|C|D|E|R|T`` ask
-turtle1's ``rotate_absolute`` action for a heading and ``F`` cancels it; launchkit has no action
-client yet, so these keys say so once and do nothing else.
+instructions printed at start, ``q`` to quit (Ctrl-C too). The keys ``G|B|V|C|D|E|R|T`` send
+turtle1's ``rotate_absolute`` action a goal for a heading and ``F`` cancels the last goal the
+action server answered, as Jazzy's does.
 """
 
 from __future__ import annotations
@@ -14,7 +14,9 @@ import threading
 from typing import Any
 
 import launchkit.ros as ros
+from launchkit.ros.action import ActionClient, ClientGoalHandle
 from launchkit.ros.msgs.geometry_msgs.msg import Twist, Vector3
+from launchkit.ros.msgs.turtlesim.action import RotateAbsolute
 from launchkit.stock import _entry
 from launchkit.stock.teleop_twist_keyboard.terminal import KeyReader, stop_on_signals
 from launchkit.stock.turtlesim.qos import TOPIC_QOS
@@ -32,6 +34,7 @@ def main(argv: list[str]) -> int:
         node.declare_parameter("scale_angular", 2.0)
         node.declare_parameter("scale_linear", 2.0)
         publisher = node.create_publisher(Twist, "turtle1/cmd_vel", TOPIC_QOS)
+        rotation = Rotations(node)
         # the parameter services answer while the key loop waits, as Jazzy's spin thread does
         executor = ros.SingleThreadedExecutor()
         executor.add_node(node)
@@ -41,14 +44,44 @@ def main(argv: list[str]) -> int:
             print(line, flush=True)
         try:
             with reader:
-                _key_loop(node, reader, publisher, stop)
+                _key_loop(node, reader, publisher, rotation, stop)
         finally:
             stop.set()
             spinner.join(5 * POLL_SEC)
     return 0
 
 
-def _key_loop(node: ros.Node, reader: KeyReader, publisher: Any, stop: threading.Event) -> None:
+class Rotations:
+    """turtle1's ``rotate_absolute`` as the keys use it: a goal a key, cancel the last one."""
+
+    def __init__(self, node: ros.Node) -> None:
+        self._node = node
+        self._client = ActionClient(node, RotateAbsolute, "turtle1/rotate_absolute")
+        self._goal_handle: ClientGoalHandle | None = None
+
+    def send(self, theta: float) -> None:
+        """Ask for heading ``theta``; the goal handle is kept when the server answers."""
+        sent = self._client.send_goal_async(RotateAbsolute.Goal(theta=theta))
+        sent.add_done_callback(self._answered)
+
+    def _answered(self, sent: Any) -> None:
+        self._node.get_logger().debug("Goal response received")
+        self._goal_handle = sent.result()
+
+    def cancel(self) -> None:
+        """Cancel the last goal answered (nothing if none was)."""
+        if self._goal_handle is not None:
+            self._node.get_logger().debug("Sending cancel request")
+            self._goal_handle.cancel_goal_async()
+
+
+def _key_loop(
+    node: ros.Node,
+    reader: KeyReader,
+    publisher: Any,
+    rotation: Rotations,
+    stop: threading.Event,
+) -> None:
     while ros.ok() and not stop.is_set():
         key = reader.read_key(POLL_SEC)
         if key is None:
@@ -56,12 +89,10 @@ def _key_loop(node: ros.Node, reader: KeyReader, publisher: Any, stop: threading
         action = action_for(key)
         if action.quit:
             return
-        if action.heading is not None or action.cancel:
-            node.get_logger().warn(
-                "rotate_absolute: launchkit has no action client yet, so the "
-                "G|B|V|C|D|E|R|T and F keys do nothing",
-                once=True,
-            )
+        if action.heading is not None:
+            rotation.send(action.heading)
+        if action.cancel:
+            rotation.cancel()
         if action.moves:
             linear = float(node.get_parameter("scale_linear").value) * action.linear
             angular = float(node.get_parameter("scale_angular").value) * action.angular

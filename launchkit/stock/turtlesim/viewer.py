@@ -16,8 +16,6 @@ none.
 
 from __future__ import annotations
 
-import contextlib
-import json
 from dataclasses import dataclass
 
 import launchkit.ros as ros
@@ -26,13 +24,11 @@ from launchkit.stock.rviz2.access import AccessPolicy
 from launchkit.stock.rviz2.config import default_config
 from launchkit.stock.rviz2.hub import Hub
 from launchkit.stock.rviz2.node import announce
-from launchkit.stock.rviz2.page_session import SUBPROTOCOL
 from launchkit.stock.rviz2.ros_link import RosLink
 from launchkit.stock.rviz2.server import ViewerServer
+from launchkit.stock.rviz2.viewer_probe import is_viewer
 
 ADDRESS = "127.0.0.1"
-#: Seconds to wait for a busy port's server to greet as a launchkit viewer.
-PROBE_TIMEOUT = 2.0
 
 
 @dataclass
@@ -72,7 +68,7 @@ def start(port: int, owner: ros.Node) -> EmbeddedViewer | None:
     except UserError as error:
         node.destroy_node()
         url = f"http://{ADDRESS}:{port}/"
-        if port and is_viewer(port):
+        if port and is_viewer(ADDRESS, port):
             announce(f"viewer: {url} (the viewer already running there shows this turtlesim)")
         else:
             owner.get_logger().warn(f"not serving a viewer: {error.message}")
@@ -80,19 +76,3 @@ def start(port: int, owner: ros.Node) -> EmbeddedViewer | None:
     link.connect(hub, server)
     announce(f"viewer: {server.url} (open it in a browser)")
     return EmbeddedViewer(node, server, link)
-
-
-def is_viewer(port: int) -> bool:
-    """Whether a launchkit viewer (the rviz2 stand-in's server) answers on ``port``: it greets
-    a page's WebSocket with a ``hello``."""
-    from websockets.sync.client import connect
-    from websockets.typing import Subprotocol
-
-    url = f"ws://{ADDRESS}:{port}/"
-    with contextlib.suppress(Exception):  # anything but a viewer's greeting means no
-        with connect(
-            url, subprotocols=[Subprotocol(SUBPROTOCOL)], open_timeout=PROBE_TIMEOUT
-        ) as ws:
-            greeting = json.loads(ws.recv(timeout=PROBE_TIMEOUT))
-            return isinstance(greeting, dict) and greeting.get("op") == "hello"
-    return False
