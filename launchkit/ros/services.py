@@ -2,7 +2,6 @@
 
 from __future__ import annotations
 
-import contextlib
 import threading
 from collections import deque
 from collections.abc import Callable
@@ -11,7 +10,7 @@ from typing import TYPE_CHECKING, Any
 import zenoh
 
 from launchkit.ros.keyexpr import decode_attachment, encode_attachment, entity_token, gid_of
-from launchkit.ros.lockstep.participant import stamp_ns
+from launchkit.ros.lockstep.participant import holding, stamp_ns
 from launchkit.ros.logging import get_logger
 from launchkit.ros.msgs import deserialize, message_type_name, serialize, type_hash
 from launchkit.ros.qos import HistoryPolicy, QoSProfile
@@ -281,8 +280,7 @@ class Client(_ServiceEntity):
         """Block until a server appears; False after ``timeout_sec``, or as soon as the context
         is no longer ok (a SIGINT or SIGTERM, as rclpy's wait stops)."""
         context = self.node.context
-        # in a lockstep launch the simulated time waits with it (the timeout is wall time)
-        with contextlib.nullcontext() if context.lockstep is None else context.lockstep.hold():
+        with holding(context):  # in a lockstep launch the simulated time waits with it
             context.graph.wait_for(lambda: self.service_is_ready() or not context.ok(), timeout_sec)
         return self.service_is_ready()
 

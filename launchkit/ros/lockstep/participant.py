@@ -42,6 +42,13 @@ def stamp_ns(context: Any) -> int:
     return time.time_ns() if lockstep is None else int(lockstep.time_ns)
 
 
+def holding(context: Any) -> contextlib.AbstractContextManager[None]:
+    """``with holding(context):`` keeps a lockstep launch's simulated time where it is while
+    the block runs (:meth:`Participant.hold`); nothing outside a lockstep launch."""
+    lockstep = context.lockstep
+    return contextlib.nullcontext() if lockstep is None else lockstep.hold()
+
+
 def wanted() -> bool:
     """Whether this process runs in a lockstep launch (``LAUNCHKIT_LOCKSTEP=1``)."""
     return os.environ.get(LOCKSTEP) == "1"
