@@ -26,7 +26,9 @@ from launchkit.runtime.recorder import Recorded, Recorder, count, render
 from launchkit.runtime.signals import held, raising
 
 if TYPE_CHECKING:
-    from launchkit.runtime.network import RouterOptions
+    from launchkit.ros_adapter.lockstep import ClockOptions, LaunchClock
+    from launchkit.runtime.network import NodeNetwork, RouterOptions
+    from launchkit.runtime.supervisor import Supervisor
 
 
 def resolve_launch_file(target: str, filename: str | None, packages: PackageIndex) -> Path:
@@ -67,6 +69,32 @@ def check(
 ) -> CheckedTree:
     """Parse and check ``path`` (and its static includes) without running anything."""
     return check_tree(path, arguments or {}, loader or LaunchLoader(), packages or PackageIndex())
+
+
+def lockstep_options(
+    *, rtf: float | None = None, until: float | None = None, paused: bool = False
+) -> ClockOptions:
+    """How ``run(..., lockstep=...)`` runs the launch's simulated clock: at most ``rtf`` times
+    real time (None: as fast as the nodes allow), ending the launch at ``until`` simulated
+    seconds, or ``paused`` until a test asks for time (``launchkit.testing``)."""
+    from launchkit.ros_adapter.lockstep import ClockOptions
+
+    return ClockOptions(rtf=rtf, until=until, paused=paused)
+
+
+def _start_clock(
+    clock: LaunchClock, supervisor: Supervisor, network: NodeNetwork, context: LaunchContext
+) -> None:
+    """Start a lockstep launch's clock on its router (started now, before any process)."""
+    from launchkit.runtime.network import ROUTER_ENV
+
+    def log(level: str, message: str) -> None:  # the clock's thread: on the loop
+        context.post(lambda: supervisor.log(level, "lockstep", message))
+
+    def until() -> None:
+        context.post(lambda: supervisor.begin_shutdown("the simulated time is up (--until)"))
+
+    clock.start(network.ensure(supervisor)[ROUTER_ENV], log, until)
 
 
 def _context(
@@ -223,6 +251,7 @@ def run(
     bridge: bool = False,
     agent_key: str | None = None,
     remote_grace: str | None = None,
+    lockstep: ClockOptions | None = None,
 ) -> int:
     """Run ``path`` until everything it started has stopped; the exit status.
 
@@ -232,6 +261,7 @@ def run(
     ``router_options``: what the launch's router adds to reach other hosts (default: the
     ``LAUNCHKIT_ROUTER_*`` variables). ``agent_key`` and ``remote_grace`` (seconds) are for the
     processes that ``<group machine=...>`` puts on other hosts (``docs/multi-host.md``).
+    ``lockstep`` runs every node on the launch's simulated clock (``docs/simulation.md``).
 
     Call it from the main thread (it handles SIGINT and SIGTERM, which Python delivers only
     there); from another thread it raises :class:`UserError` before it creates anything.
@@ -251,6 +281,7 @@ def run(
     from launchkit.runtime.supervisor import Supervisor
 
     arguments = dict(arguments or {})
+    clock: LaunchClock | None = None
     network = NodeNetwork(router, router_options)
     remote = RemoteLaunch(network, agent_key, remote_grace)
     packages, loader = PackageIndex(), LaunchLoader()
@@ -272,9 +303,18 @@ def run(
                 f"argument '{name}' is not declared or used by "
                 f"{path.name} (or the files it includes statically)",
             )
+        if lockstep is not None:
+            from launchkit.ros_adapter.lockstep import LaunchClock
+            from launchkit.runtime.clock_hooks import ClockHooks
+
+            clock = LaunchClock(lockstep)
+            hooks = ClockHooks(clock, hooks)
+            network.lockstep = True
         supervisor = Supervisor(output, network=network, hooks=hooks, remote_factory=remote.factory)
         remote.bind(supervisor)
         context = _context(supervisor, arguments, packages, loader, run_dir.path)
+        if clock is not None:
+            _start_clock(clock, supervisor, network, context)
 
         def ros_link() -> RosLink:
             # imported when a lifecycle or composable node first needs the launcher's own ROS
@@ -289,6 +329,8 @@ def run(
         output.launch_error(error.format(), screen=False)
         raise
     finally:
+        if clock is not None:
+            clock.close()
         remote.close()
         output.close()
         run_dir.release()

@@ -99,6 +99,27 @@ def _add_launch_command(commands: Any, name: str, help_text: str) -> None:
         action="store_true",
         help="also run `launchkit bridge` to the ROS 2 (DDS) graph (needs launchkit[ros2])",
     )
+    sim = run.add_argument_group("simulated time (docs/simulation.md)")
+    sim.add_argument(
+        "--lockstep",
+        action="store_true",
+        help="run every node on the launch's simulated clock, which advances only when all are "
+        "done with the current instant (repeatable runs, as fast as they allow)",
+    )
+    sim.add_argument(
+        "--rtf",
+        type=float,
+        metavar="X",
+        help="with --lockstep: at most X simulated seconds per wall second (1.0: real time)",
+    )
+    sim.add_argument(
+        "--until",
+        type=float,
+        metavar="S",
+        help="with --lockstep: end the launch (status 0) after S simulated seconds",
+    )
+    # launchkit.testing's lockstep handles: the time advances only when the test asks
+    sim.add_argument("--lockstep-paused", action="store_true", help=argparse.SUPPRESS)
     # launchkit.testing's event channel (launchkit/runtime/events.py): not for people
     run.add_argument("--events-fd", type=int, help=argparse.SUPPRESS)
 
@@ -289,6 +310,7 @@ def _launch(args: argparse.Namespace, hooks: SupervisorHooks | None = None) -> i
     from launchkit.ros_cli.router_options import federation_asked, federation_options
 
     options = federation_options(args) if federation_asked(args) else None
+    lockstep = _lockstep_options(args)
     # this process is the launch's: what its processes orphan is re-parented here, to be
     # found and killed (launchkit.runtime.containment)
     become_subreaper()
@@ -302,10 +324,28 @@ def _launch(args: argparse.Namespace, hooks: SupervisorHooks | None = None) -> i
             bridge=args.bridge,
             agent_key=args.agent_key,
             remote_grace=args.remote_grace,
+            lockstep=lockstep,
         )
     except LaunchkitError as error:
         error.exit_status = 2  # raised before anything started: the input is at fault
         raise
+
+
+def _lockstep_options(args: argparse.Namespace) -> Any:
+    """``--lockstep`` and its options checked (``None`` without it)."""
+    from launchkit import api
+
+    paused = args.lockstep_paused
+    for flag, value in (("--rtf", args.rtf), ("--until", args.until)):
+        if value is not None and not (args.lockstep or paused):
+            raise UserError(f"{flag} needs --lockstep", expected=f"--lockstep {flag} ...")
+    if args.rtf is not None and not args.rtf > 0:
+        raise UserError(f"--rtf {args.rtf:g}", expected="a real-time factor above 0")
+    if args.until is not None and not args.until >= 0:
+        raise UserError(f"--until {args.until:g}", expected="simulated seconds, 0 or more")
+    if not (args.lockstep or paused):
+        return None
+    return api.lockstep_options(rtf=args.rtf, until=args.until, paused=paused)
 
 
 def _runs_an_executable(items: list[str]) -> bool:

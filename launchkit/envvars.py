@@ -7,6 +7,9 @@
 ``LAUNCHKIT_CACHE_DIR``               the folder of launchkit's per-user cache (the ROS message
                                       definitions read from rosbags, per rosbags version); default
                                       ``$XDG_CACHE_HOME/launchkit``, else ``~/.cache/launchkit``
+``LAUNCHKIT_LOCKSTEP``                ``1``: the process's ROS contexts take part in the launch's
+                                      lockstep simulated clock (set by ``launchkit run
+                                      --lockstep``; :mod:`launchkit.ros.lockstep`)
 ``LAUNCHKIT_LOG_FILE_MB``             a log file of ``launchkit run`` that reaches this size (MB) is
                                       renamed ``NAME.1`` and started again (default 50; 0: never)
 ``LAUNCHKIT_LOG_KEEP_RUNS``           how many run folders ``launchkit run`` keeps in the log
@@ -64,6 +67,7 @@ Other variables launchkit reads keep the names ROS gives them (``ROS_DOMAIN_ID``
 from __future__ import annotations
 
 CACHE_DIR = "LAUNCHKIT_CACHE_DIR"
+LOCKSTEP = "LAUNCHKIT_LOCKSTEP"
 LOG_FILE_MB = "LAUNCHKIT_LOG_FILE_MB"
 LOG_RUN_MB = "LAUNCHKIT_LOG_RUN_MB"
 LOG_KEEP_RUNS = "LAUNCHKIT_LOG_KEEP_RUNS"

@@ -191,3 +191,13 @@ def sleepers(marker: str) -> list[int]:
         if command[:2] == [b"sleep", marker.encode()]:
             found.append(int(entry.name))
     return found
+
+
+def assert_docs_show(test_file: str, first_line: str, docs_file: str) -> None:
+    """``docs_file`` (under docs/) shows ``test_file`` as a Python block, from ``first_line``
+    to the line above its ``test_the_docs_show_this_file``."""
+    here = Path(test_file).read_text()
+    end = here.index("\n\n\ndef test_the_docs_show_this_file")
+    example = here[here.index(first_line) : end]
+    docs = (Path(__file__).parents[1] / "docs" / docs_file).read_text()
+    assert f"```python\n{example}\n```" in docs

@@ -11,7 +11,7 @@ import enum
 import threading
 import time
 from collections.abc import Callable
-from typing import TYPE_CHECKING
+from typing import TYPE_CHECKING, Protocol
 
 from launchkit.ros.ros_time import ClockType as ClockType
 from launchkit.ros.ros_time import Duration as Duration
@@ -175,6 +175,17 @@ class Clock:
         return self.sleep_until(self.now() + rel_time, context)
 
 
+class SleepWatcher(Protocol):
+    """Told of every sleep on a ROS clock (a lockstep participant: the time stops at each
+    wake-up, and the woken thread counts as busy until it sleeps or spins again)."""
+
+    def sleeping(self, until_ns: int) -> None:
+        """The calling thread sleeps until ``until_ns``."""
+
+    def woke(self) -> None:
+        """The calling thread's sleep ended."""
+
+
 class ROSClock(Clock):
     """The clock nodes use: system time, or the time ``/clock`` sets while ROS time is active."""
 
@@ -186,6 +197,7 @@ class ROSClock(Clock):
         self._active = False
         self._override_ns = 0
         self._changed = threading.Condition()
+        self.sleep_watcher: SleepWatcher | None = None
 
     @property
     def ros_time_is_active(self) -> bool:
@@ -235,6 +247,16 @@ class ROSClock(Clock):
                 handle.post_callback(TimeJump(change, delta))
 
     def _wait_until(self, target_ns: int, context: Context) -> bool:
+        watcher = self.sleep_watcher if self._active else None
+        if watcher is None:
+            return self._wait_for_time(target_ns, context)
+        watcher.sleeping(target_ns)
+        try:
+            return self._wait_for_time(target_ns, context)
+        finally:
+            watcher.woke()
+
+    def _wait_for_time(self, target_ns: int, context: Context) -> bool:
         active = self._active
         with self._changed:
             while context.ok() and self._active == active:

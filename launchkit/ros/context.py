@@ -13,6 +13,8 @@ from typing import TYPE_CHECKING, Any, Protocol
 
 from launchkit.ros.arguments import RosArguments, parse_ros_args
 from launchkit.ros.keyexpr import domain_id as domain_id_from_environment
+from launchkit.ros.lockstep.participant import Participant
+from launchkit.ros.lockstep.participant import wanted as lockstep_wanted
 from launchkit.ros.logging import get_logger
 from launchkit.ros.router_access import ForeignRouterError
 from launchkit.ros.router_watch import watch_router
@@ -92,6 +94,8 @@ class Context:
         self.ros_args = RosArguments()
         self.domain_id = 0
         self._nodes: weakref.WeakSet[ContextNode] = weakref.WeakSet()
+        #: This context's part in a lockstep launch (``launchkit.ros.lockstep``), else None.
+        self.lockstep: Participant | None = None
 
     def init(self, args: list[str] | None = None, domain_id: int | None = None) -> None:
         """Parse ``--ros-args`` and mark the context usable (the session opens on first use)."""
@@ -106,6 +110,8 @@ class Context:
             self._interrupted = False
             self._initialized = True
             _contexts.add(self)
+        if lockstep_wanted() and self.lockstep is None:
+            self.lockstep = Participant(self)
 
     def ok(self) -> bool:
         """True between ``init()`` and ``shutdown()`` (or a signal)."""

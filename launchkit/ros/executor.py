@@ -107,6 +107,10 @@ class _WorkTracker:
         finally:
             self._stepping.discard(me)
 
+    def idle(self) -> bool:
+        """Whether no handler runs (in any thread)."""
+        return self._running == 0
+
     def in_handler(self) -> bool:
         """Whether the calling thread is stepping a handler (so it is inside a callback)."""
         return threading.get_ident() in self._stepping
@@ -289,6 +293,9 @@ class Executor:
             if remaining is not None and remaining <= 0:
                 raise TimeoutException()
             wait = min(w for w in (timer_wait, remaining, _MAX_WAIT) if w is not None)
+            lockstep = self._context.lockstep
+            if lockstep is not None and self._work_tracker.idle():
+                lockstep.on_idle()
             self._bell.wait(self._has_work, max(0.0, wait))
 
     def _has_work(self) -> bool:

@@ -106,6 +106,7 @@ class Node(EntityMethods, ParameterMethods, GraphQueries):
         self._default_callback_group = MutuallyExclusiveCallbackGroup()
         self._rate_group = ReentrantCallbackGroup()
         self._clock = ROSClock()
+        self._clock.sleep_watcher = self.context.lockstep
         self._clock_sub: Subscription | None = None
         self._destroyed = False
 
@@ -148,7 +149,8 @@ class Node(EntityMethods, ParameterMethods, GraphQueries):
                 ignore_override=True,
             )
         if not self.has_parameter(USE_SIM_TIME):
-            self.declare_parameter(USE_SIM_TIME, False)
+            # in a lockstep launch every node runs on the launch's simulated clock
+            self.declare_parameter(USE_SIM_TIME, self.context.lockstep is not None)
         self._use_sim_time(self.get_parameter(USE_SIM_TIME).value is True)
         self._params.post_set.append(self._on_params_set)
         if start_parameter_services:

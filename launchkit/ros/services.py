@@ -3,7 +3,6 @@
 from __future__ import annotations
 
 import threading
-import time
 from collections import deque
 from collections.abc import Callable
 from typing import TYPE_CHECKING, Any
@@ -11,6 +10,7 @@ from typing import TYPE_CHECKING, Any
 import zenoh
 
 from launchkit.ros.keyexpr import decode_attachment, encode_attachment, entity_token, gid_of
+from launchkit.ros.lockstep.participant import holding, stamp_ns
 from launchkit.ros.logging import get_logger
 from launchkit.ros.msgs import deserialize, message_type_name, serialize, type_hash
 from launchkit.ros.qos import HistoryPolicy, QoSProfile
@@ -117,6 +117,8 @@ class Service(_ServiceEntity):
             b"" if payload is None else payload.to_bytes(),
             None if attachment is None else attachment.to_bytes(),
         )
+        if self.node.context.lockstep is not None:
+            self.node.context.lockstep.received(item[2])  # a request of a later instant
         qos = self.qos_profile.resolved()
         with self._pending_lock:
             if qos.history != HistoryPolicy.KEEP_ALL and len(self._pending) >= qos.effective_depth:
@@ -158,7 +160,7 @@ class Service(_ServiceEntity):
             return  # a request through another user's router gets no answer
 
         def reply(data: bytes) -> None:
-            attachment = encode_attachment(sequence, time.time_ns(), gid)
+            attachment = encode_attachment(sequence, stamp_ns(self.node.context), gid)
             query.reply(self.key, data, attachment=attachment)
             query.drop()  # type: ignore[no-untyped-call]
 
@@ -269,11 +271,17 @@ class Client(_ServiceEntity):
             for t in self.node.context.graph.tokens("SS", self.srv_name)
         )
 
+    def requests_in_flight(self) -> int:
+        """How many requests await their reply (the lockstep waits for them)."""
+        with self._lock:
+            return len(self._pending_requests)
+
     def wait_for_service(self, timeout_sec: float | None = None) -> bool:
         """Block until a server appears; False after ``timeout_sec``, or as soon as the context
         is no longer ok (a SIGINT or SIGTERM, as rclpy's wait stops)."""
         context = self.node.context
-        context.graph.wait_for(lambda: self.service_is_ready() or not context.ok(), timeout_sec)
+        with holding(context):  # in a lockstep launch the simulated time waits with it
+            context.graph.wait_for(lambda: self.service_is_ready() or not context.ok(), timeout_sec)
         return self.service_is_ready()
 
     def call_async(self, request: Any, timeout_sec: float | None = None) -> Future:
@@ -303,7 +311,7 @@ class Client(_ServiceEntity):
             self._sequence += 1
             sequence = self._sequence
             self._pending_requests[sequence] = future
-            attachment = encode_attachment(sequence, time.time_ns(), self.gid)
+            attachment = encode_attachment(sequence, stamp_ns(self.node.context), self.gid)
         response_type = self.type_name + "_Response"
 
         def on_reply(reply: zenoh.Reply) -> None:

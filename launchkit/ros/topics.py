@@ -14,6 +14,7 @@ from zenoh import ext
 
 from launchkit.ros.event_handler import MatchedEvent
 from launchkit.ros.keyexpr import decode_attachment, encode_attachment, entity_token, gid_of
+from launchkit.ros.lockstep.participant import stamp_ns
 from launchkit.ros.msgs import codec, message_type_name, type_hash
 from launchkit.ros.qos import DurabilityPolicy, HistoryPolicy, QoSProfile, ReliabilityPolicy
 from launchkit.ros.task import await_or_execute
@@ -204,7 +205,8 @@ class Publisher(_Entity):
             return  # linked to another user's router: nothing more leaves (context.py)
         with self._lock:
             self._sequence += 1
-            attachment = encode_attachment(self._sequence, time.time_ns(), self.gid)
+            stamp = stamp_ns(self.node.context)
+            attachment = encode_attachment(self._sequence, stamp, self.gid)
             self._pub.put(data, attachment=attachment)
 
     def get_subscription_count(self) -> int:
@@ -297,7 +299,8 @@ class Subscription(_Entity):
         if self.node.context.refused is not None:
             return  # from another user's router
         item: tuple[bytes, bytes | None, int]
-        if self._with_info:
+        lockstep = self.node.context.lockstep
+        if self._with_info or lockstep is not None:
             attachment = sample.attachment
             item = (
                 sample.payload.to_bytes(),
@@ -306,10 +309,14 @@ class Subscription(_Entity):
             )
         else:
             item = (sample.payload.to_bytes(), None, 0)
+        if lockstep is not None:
+            lockstep.received(item[1])
         with self._queue_lock:
             if self._depth is not None and len(self._queue) >= self._depth:
-                self._queue.popleft()
+                dropped = self._queue.popleft()
                 self.dropped += 1
+                if lockstep is not None:
+                    lockstep.handled(self, dropped[1])
             self._queue.append(item)
             scheduled, self._scheduled = self._scheduled, True
         if self.on_arrival is not None:
@@ -325,6 +332,9 @@ class Subscription(_Entity):
                 return None
             item = self._queue.popleft()
             self._scheduled = more = bool(self._queue)
+        if self.node.context.lockstep is not None:
+            # handled from now on: the participant reports only when no callback runs
+            self.node.context.lockstep.handled(self, item[1])
         if more:
             self.node.post(self)  # back in the queue, behind the work already waiting
         return self._take_message(*item)

@@ -5,6 +5,7 @@ from __future__ import annotations
 from collections.abc import Callable
 from typing import TYPE_CHECKING, Any, Protocol
 
+from launchkit.envvars import LOCKSTEP as LOCKSTEP_ENV
 from launchkit.envvars import ROUTER as ROUTER_ENV
 from launchkit.envvars import ROUTER_AUTOSTART as AUTOSTART_ENV
 
@@ -38,6 +39,8 @@ class NodeNetwork:
         self.endpoint = endpoint
         self.options = options  # None: the LAUNCHKIT_ROUTER_* variables say
         self._router: RouterHandle | None = None
+        #: Every process of the launch takes part in its lockstep clock (``--lockstep``).
+        self.lockstep = False
 
     def ensure(self, runner: Runner) -> dict[str, str]:
         """Environment additions for a node process (starting the router if needed)."""
@@ -59,7 +62,7 @@ class NodeNetwork:
                     f"the router at {router.endpoint} was already running: this launch's "
                     "--listen/--connect/--tls settings apply only to a router it starts",
                 )
-        return {ROUTER_ENV: self._router.endpoint, AUTOSTART_ENV: "0"}
+        return {ROUTER_ENV: self._router.endpoint, AUTOSTART_ENV: "0", **self._lockstep_env()}
 
     def known(self) -> dict[str, str]:
         """Environment additions for any other process: where the router is or will be, when
@@ -68,12 +71,15 @@ class NodeNetwork:
         A plain ``<executable>`` may still be a ROS program (gazebo_ros's ``gzserver`` is an
         ``ExecuteProcess``); in ROS it finds the others through DDS, here it needs the address.
         """
-        environment = {AUTOSTART_ENV: "0"}
+        environment = {AUTOSTART_ENV: "0", **self._lockstep_env()}
         if self._router is not None:
             environment[ROUTER_ENV] = self._router.endpoint
         elif self.endpoint:
             environment[ROUTER_ENV] = self.endpoint
         return environment
+
+    def _lockstep_env(self) -> dict[str, str]:
+        return {LOCKSTEP_ENV: "1"} if self.lockstep else {}
 
     def close(self) -> None:
         """Stop the router if this launch hosts it."""

@@ -43,6 +43,7 @@ class LaunchFactory:
         cwd: str | os.PathLike[str] | None = None,
         ready_timeout: float = DEFAULT_READY_TIMEOUT,
         allow_exit: AllowExit | None = None,
+        lockstep: bool = False,
     ) -> LaunchHandle:
         """Start the launch in the background and return once it is ready (it raises
         :class:`launchkit.testing.LaunchFailed` with launchkit's message if it fails first).
@@ -50,6 +51,9 @@ class LaunchFactory:
         ``allow_exit`` declares exits the test expects and will not check: process names
         (any exit code) or ``{name: code or codes}``; ``"*"`` names every process. Any other
         unexpected death the test never takes note of fails it at teardown.
+
+        ``lockstep=True`` runs the launch on a simulated clock that stands still until the
+        test moves it (``handle.advance(seconds)``; see ``docs/testing.md``).
         """
         __tracebackhide__ = True
         name = self._resolve(target) if file is None else str(target)
@@ -61,6 +65,7 @@ class LaunchFactory:
             env=env,
             cwd=cwd,
             allow_exit=allow_exit,
+            lockstep=lockstep,
         )
         self.handles.append(handle)
         self._registry.add(handle)

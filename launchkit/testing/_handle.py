@@ -47,6 +47,7 @@ from launchkit.testing._state import LaunchState
 from launchkit.testing._waits import AllowedExits, AllowExit, Waits
 
 if TYPE_CHECKING:
+    from launchkit.testing._sim_clock import SimClock
     from launchkit.testing._topics import TopicProbe
 
 DEFAULT_READY_TIMEOUT = 30.0
@@ -73,6 +74,7 @@ class LaunchHandle:
         env: Mapping[str, str] | None = None,
         cwd: str | os.PathLike[str] | None = None,
         allow_exit: AllowExit | None = None,
+        lockstep: bool = False,
     ) -> None:
         self.title = title
         self.log_dir = log_dir
@@ -82,6 +84,8 @@ class LaunchHandle:
         self.state = LaunchState()
         self.waits = Waits(self.state, title, self.launcher_log, AllowedExits(allow_exit))
         self._probe: TopicProbe | None = None
+        self.lockstep = lockstep
+        self._sim_clock: SimClock | None = None
         self.stop_notes: list[str] = []
         self._stop_waits: list[float] = []  # scaled seconds each stop signal was given
         self._result: LaunchResult | None = None
@@ -98,7 +102,7 @@ class LaunchHandle:
         ours, theirs = socket.socketpair()
         fd = theirs.fileno()
         command = [sys.executable, "-m", "launchkit", "run", "--router", self.router]
-        command += ["--events-fd", str(fd), *items]
+        command += ["--events-fd", str(fd), *(["--lockstep-paused"] if lockstep else []), *items]
         try:
             with open(self.launcher_log, "wb") as log:
                 self._popen = subprocess.Popen(
@@ -261,12 +265,79 @@ class LaunchHandle:
             with self.state.condition:
                 raise WaitTimeout(self.waits.failure(what, f"timed out: {why}")) from None
 
+    # -- simulated time (lockstep=True) --------------------------------------------------------
+
+    def _clock(self) -> SimClock:
+        if not self.lockstep:
+            raise LaunchTestError(
+                f"{self.title} does not run in lockstep (launch(..., lockstep=True))"
+            )
+        if self._sim_clock is None:
+            from launchkit.testing._sim_clock import SimClock
+
+            self._sim_clock = SimClock(self.router, self.domain_id)
+        return self._sim_clock
+
+    @property
+    def sim_time(self) -> float:
+        """The launch's simulated time in seconds (``lockstep=True``)."""
+        return self._clock().sim_time
+
+    def advance(self, seconds: float, timeout: float = 60.0) -> float:
+        """Run the simulated time ``seconds`` forward; returns, with the new time, once every
+        node has handled everything due up to it (at most ``timeout`` wall seconds)."""
+        __tracebackhide__ = True
+        return self._sim_wait(lambda clock, deadline: clock.advance(seconds, deadline), timeout)
+
+    def wait_until(
+        self, condition: Callable[[], bool], within: float, step: float = 0.1, timeout: float = 60.0
+    ) -> float:
+        """Advance the simulated time by ``step`` until ``condition()`` holds, for at most
+        ``within`` simulated seconds; the simulated time it held at."""
+        __tracebackhide__ = True
+        return self._sim_wait(
+            lambda clock, deadline: clock.wait_until(condition, within, step, deadline), timeout
+        )
+
+    def publish(self, topic: str, message: Any) -> None:
+        """Publish ``message`` on ``topic`` from the test's node: the launch's nodes handle it
+        before the simulated time next moves."""
+        self._clock().publish(topic, message)
+
+    def subscribe(self, topic: str, msg_type: Any) -> None:
+        """Keep the latest message on ``topic``, delivered before ``advance`` returns."""
+        self._clock().subscribe(topic, msg_type)
+
+    def latest(self, topic: str) -> Any:
+        """The latest message kept on a topic :meth:`subscribe` named (None: none yet)."""
+        return self._clock().latest(topic)
+
+    def _sim_wait(self, wait: Callable[[SimClock, Deadline], float], timeout: float) -> float:
+        __tracebackhide__ = True
+        from launchkit.testing._sim_clock import SimClockTimeout
+
+        clock = self._clock()
+        with self.state.condition:
+            problem = self.waits.launch_over()
+            if problem is not None:
+                raise ProcessDied(self.waits.failure("simulated time", problem))
+        try:
+            return wait(clock, Deadline(timeout))
+        except SimClockTimeout as why:
+            with self.state.condition:
+                raise WaitTimeout(
+                    self.waits.failure("simulated time", f"timed out: {why}")
+                ) from None
+
     # -- stopping ------------------------------------------------------------------------------
 
     def _close_probe(self) -> None:
         if self._probe is not None:
             probe, self._probe = self._probe, None
             probe.close()
+        if self._sim_clock is not None:
+            sim_clock, self._sim_clock = self._sim_clock, None
+            sim_clock.close()
 
     @property
     def stopped(self) -> bool:

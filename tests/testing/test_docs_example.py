@@ -43,9 +43,6 @@ def test_a_shared_launch_keeps_its_output(quiet_hello):
 def test_the_docs_show_this_file():
     """docs/testing.md's complete example is this file, from ``import re`` to the line above
     this test."""
-    from pathlib import Path
+    from tests.support import assert_docs_show
 
-    here = Path(__file__).read_text()
-    example = here[here.index("import re") : here.index("\n\n\ndef test_the_docs_show_this_file")]
-    docs = (Path(__file__).parents[2] / "docs" / "testing.md").read_text()
-    assert f"```python\n{example}\n```" in docs
+    assert_docs_show(__file__, "import re", "testing.md")

@@ -12,6 +12,7 @@ from typing import TYPE_CHECKING, Any
 
 from launchkit.ros.action import names
 from launchkit.ros.action.goal_state import ACTIVE, GoalStatus
+from launchkit.ros.lockstep.participant import holding
 from launchkit.ros.msgs import get_message, get_service, message_type_name
 from launchkit.ros.qos import (
     QoSProfile,
@@ -299,7 +300,8 @@ class ActionClient:
     def wait_for_server(self, timeout_sec: float | None = None) -> bool:
         """Block until a server is ready; False after ``timeout_sec`` or at shutdown."""
         context = self._node.context
-        context.graph.wait_for(lambda: self.server_is_ready() or not context.ok(), timeout_sec)
+        with holding(context):  # in a lockstep launch the simulated time waits with it
+            context.graph.wait_for(lambda: self.server_is_ready() or not context.ok(), timeout_sec)
         return self.server_is_ready()
 
     def destroy(self) -> None:

@@ -146,6 +146,10 @@ class CameraNode:
         key = nanoseconds(joints)
         if self.newest is None or key > self.newest[0]:
             self.newest = (key, joints, truth)
+        if self.node.context.lockstep is not None:
+            # the launch's clock waits for this callback: the frame due at this state's
+            # instant is rendered and sent before the time moves on
+            self.render_if_due()
 
     def _drain(self) -> None:
         """Run the callbacks already queued, so that the newest state is known."""

@@ -61,10 +61,13 @@ class DiffDriveNode:
             f"{p.odometry_frame} -> {p.robot_base_frame} on '{p.odometry_topic}'"
         )
         self._pending_command = (0.0, 0.0)
+        #: In lockstep, commands by the simulated time they were sent (see _cmd).
+        self.lockstep = node.context.lockstep is not None
+        self._queued: list[tuple[int, tuple[float, float]]] = []
         if p.publish_wheel_tf:
             node.get_logger().warn("publish_wheel_tf is not supported; no wheel transforms")
 
-    def _cmd(self, msg: Any) -> None:
+    def _cmd(self, msg: Any, info: ros.MessageInfo) -> None:
         command = (float(msg.linear.x), float(msg.angular.z))
         if not is_finite_command(*command):
             self.node.get_logger().warn(
@@ -73,6 +76,15 @@ class DiffDriveNode:
                 throttle_duration_sec=5.0,
             )
             return
+        if self.lockstep:
+            # A command sent at the instant of a state may arrive before or after that
+            # state: it applies from the first state after the instant it was sent, so
+            # the order of the two never shows (repeatable runs).
+            self._queued.append((info["source_timestamp"], command))
+            return
+        self._apply(command)
+
+    def _apply(self, command: tuple[float, float]) -> None:
         self._pending_command = command
         if self.controller is not None:
             self.controller.set_command(*command)
@@ -97,6 +109,9 @@ class DiffDriveNode:
             self._step(*pair)
 
     def _step(self, msg: Any, base: BaseState) -> None:
+        sent_before = nanoseconds(msg)
+        while self._queued and self._queued[0][0] < sent_before:
+            self._apply(self._queued.pop(0)[1])
         now = messages.seconds_of(msg.header.stamp)
         if self.controller is None or now < self.controller.start_time:
             # First state, or the world was reset: start over at this sim time.

@@ -20,6 +20,7 @@ for a model without a joint state plugin; 0 for none, as in Gazebo; see
 from __future__ import annotations
 
 import faulthandler
+import math
 import os
 import signal
 from dataclasses import dataclass, field
@@ -100,7 +101,14 @@ class SimServer:
         self.children = PluginProcesses(self.logger.info)
         self.sensor_qos = ros.QoSProfile(depth=5, reliability=ros.ReliabilityPolicy.RELIABLE)
         self.clock_pub = None
-        if options.ros_init:
+        #: In a lockstep launch the launch's clock drives the physics (see run_lockstep).
+        self.lockstep = node.context.lockstep is not None
+        if self.lockstep:
+            self.logger.info(
+                "lockstep: the physics follows the launch's /clock and holds it at every "
+                "instant something is due"
+            )
+        elif options.ros_init:
             clock_qos = ros.QoSProfile(depth=1, durability=ros.DurabilityPolicy.TRANSIENT_LOCAL)
             self.clock_pub = p.create_publisher(
                 messages.message_class("rosgraph_msgs", "Clock"), "/clock", clock_qos
@@ -201,6 +209,8 @@ class SimServer:
         for plugin, config in plugins.cameras:
             camera = CameraNodeParams(config.sensor, model, self.world_file, self.egl)
             self.children.start_camera(name, plugin, camera)
+        if self.lockstep:
+            self._reschedule()  # its first state is due now
 
     def _command(self, entity: str, msg: Any) -> None:
         spawned = self.spawned.get(entity)
@@ -277,6 +287,9 @@ class SimServer:
 
     def run(self) -> None:
         """Step, publish and pace until shutdown."""
+        if self.lockstep:
+            self.run_lockstep()
+            return
         steps_between_spins = 8
         while self.running and ros.ok():
             # Ground truth and joint states go out before the step so that a subscriber sees a
@@ -292,10 +305,77 @@ class SimServer:
                 self.children.supervise()
                 self._yield_joint_state_topics()
 
+    def run_lockstep(self) -> None:
+        """Step when the launch's clock moves, until shutdown.
+
+        A timer on the node's (simulated) clock steps the physics up to the time it fires at,
+        publishing what is due on the way, and sets itself to the next step at which something
+        is due (a state, joint states, a scan): the launch's clock stops there, so every
+        message of that instant is handled (the diff drive's command among them) before the
+        physics goes on.
+        """
+        self._step_timer = self.node.create_timer(self.sim.time_step, self._catch_up)
+        executor = ros.SingleThreadedExecutor(context=self.node.context)
+        executor.add_node(self.node)
+        try:
+            while self.running and ros.ok():
+                executor.spin_once(timeout_sec=0.1)
+        finally:
+            executor.remove_node(self.node)
+
+    def _catch_up(self) -> None:
+        now_ns = self.node.get_clock().now().nanoseconds
+        while _ns(self._step_time(1)) <= now_ns:
+            self.sim.step()
+            self._publish(self.sim.time)
+            if self.sim.steps % 240 == 0:
+                self.children.supervise()
+                self._yield_joint_state_topics()
+        self._reschedule()
+
+    def _reschedule(self) -> None:
+        """Set the step timer to the next step at which something is due."""
+        now_ns = self.node.get_clock().now().nanoseconds
+        self._step_timer.timer_period_ns = max(1, self._next_event_ns() - now_ns)
+
+    def _step_time(self, ahead: int) -> float:
+        """The sim time ``ahead`` steps from now (as :attr:`Simulation.time` will say)."""
+        return (self.sim.steps + ahead) * self.sim.time_step
+
+    def _next_event_ns(self) -> int:
+        """The first step ahead at which something is published (at most a second ahead)."""
+        gates = [g for name, g in self.state_gates.items() if name in self.spawned]
+        for spawned in self.spawned.values():
+            gates += [lidar.gate for lidar in spawned.plugins.lidars]
+            gates += [
+                gate
+                for output, _, gate in spawned.joint_state_pubs
+                if not (output.implicit and output.topic in self.yielded_topics)
+            ]
+        steps_per_second = max(1, round(1.0 / self.sim.time_step))
+        ahead = min([self._steps_until(gate) for gate in gates] + [steps_per_second])
+        return _ns(self._step_time(ahead))
+
+    def _steps_until(self, gate: RateGate) -> int:
+        """How many steps ahead ``gate`` is first due (at least 1)."""
+        due = gate.next_due()
+        if due is None:
+            return 1
+        ahead = max(1, math.ceil(due / self.sim.time_step) - self.sim.steps)
+        while ahead > 1 and gate.is_due(self._step_time(ahead - 1)):  # float rounding
+            ahead -= 1
+        while not gate.is_due(self._step_time(ahead)):
+            ahead += 1
+        return ahead
+
     def close(self) -> None:
         """Stop the children and the physics."""
         self.children.stop()
         self.sim.close()
+
+
+def _ns(seconds: float) -> int:
+    return round(seconds * 1e9)
 
 
 def _ground_truth(now: float, root: str, base: Any) -> Any:

@@ -19,6 +19,7 @@ from typing import Any
 
 import launchkit.ros as ros
 from launchkit.errors import UserError
+from launchkit.ros.lockstep.participant import holding
 from launchkit.ros.services import ServiceCallError
 from launchkit.rotations import rpy_to_quaternion
 from launchkit.stock import _entry
@@ -132,7 +133,9 @@ def main(argv: list[str]) -> int:
     """Spawn the entity; ``argv`` is the whole command line."""
     args = parse_args(argv[1:])
     with _entry.ros_node(argv, "spawn_entity") as node:
-        message = spawn(node, args)
+        # in a lockstep launch the entity is spawned at the simulated time the spawner started
+        with holding(node.context):
+            message = spawn(node, args)
     print(f"[spawn_entity] {message}", flush=True)
     return 0
 

@@ -40,10 +40,18 @@ class RateGate:
         self.period = 1.0 / rate if rate > 0 else 0.0
         self.last: float | None = None
 
+    def is_due(self, now: float) -> bool:
+        """Whether a period has passed since the last firing (nothing remembered)."""
+        # A little slack so a 1/240 s step grid does not skip a beat on rounding.
+        return self.last is None or now - self.last >= self.period - 1e-9
+
+    def next_due(self) -> float | None:
+        """The sim time from which :meth:`is_due` holds (None: at once)."""
+        return None if self.last is None else self.last + self.period - 1e-9
+
     def due(self, now: float) -> bool:
         """True (and remember ``now``) when a period has passed since the last firing."""
-        # A little slack so a 1/240 s step grid does not skip a beat on rounding.
-        if self.last is not None and now - self.last < self.period - 1e-9:
+        if not self.is_due(now):
             return False
         self.last = now
         return True
