@@ -99,6 +99,7 @@ NAMES = (
     CACHE_DIR,
     LOG_FILE_MB,
     LOG_KEEP_RUNS,
+    LOCKSTEP,
     LOG_RUN_MB,
     NO_CGROUP,
     RCLPY,
