@@ -60,13 +60,12 @@ class Evaluator:
             try:
                 proc.stdin.write(json.dumps(request).encode() + b"\n")
                 proc.stdin.flush()
+                line = self._answer(proc, limits)
             except OSError:
                 self._kill()
                 raise SandboxError("the evaluator process ended unexpectedly") from None
-            try:
-                line = self._answer(proc, limits)
-            except BaseException:  # a signal (Ctrl-C) while it evaluates: its answer would
-                self._kill()  # be read as the next expression's
+            except BaseException:  # a signal (Ctrl-C) once the request may be on its way: its
+                self._kill()  # answer would be read as the next expression's
                 raise
         try:
             reply = json.loads(line)
