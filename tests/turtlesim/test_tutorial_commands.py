@@ -151,14 +151,14 @@ def test_teleop_key_drives_turtle1_with_the_arrow_and_action_keys(
         spin_until(
             probe, lambda: any(abs(p.theta - 1.5708) < 0.02 for p in got), "turtle1 facing north"
         )
-        child.send("d")  # to 3.1416 (west), canceled by F on its way there
-        spin_until(probe, lambda: any(p.theta > 1.8 for p in got), "turtle1 turning west")
+        child.send("c")  # to -2.3562 (south-west), the long way round, canceled by F
+        spin_until(probe, lambda: any(p.theta > 1.65 for p in got), "turtle1 turning")
         child.send("f")
-        spin_until(
-            probe,
-            lambda: any(p.angular_velocity == 0.0 and 1.8 < p.theta < 3.0 for p in got),
-            "turtle1 stopped short of west",
-        )
+
+        def stopped_short(p: Pose) -> bool:
+            return p.angular_velocity == 0.0 and (p.theta > 1.65 or p.theta < -2.4)
+
+        spin_until(probe, lambda: any(stopped_short(p) for p in got), "turtle1 stopped short")
         child.send("q")
         child.expect_exact("EXIT=0", timeout=DEADLINE)
     finally:
