@@ -9,8 +9,8 @@ from collections.abc import Callable, Iterator
 from typing import Any
 
 import pytest
-from launchkit.ros.msgs.std_srvs.srv import Empty
 from launchkit.ros.msgs.turtlesim.action import RotateAbsolute
+from launchkit.ros.msgs.turtlesim.srv import Kill, Spawn
 
 from launchkit.ros.action import ActionClient, GoalStatus
 from tests.turtlesim.conftest import DEADLINE, NODE, Program, call, python, spin_until
@@ -26,13 +26,20 @@ def sim(programs: Callable[..., Program]) -> Program:
 
 
 @pytest.fixture
-def rotate(sim: Program, probe: Any) -> Iterator[ActionClient]:
-    """turtle1 reset to the centre, heading 0, and a client of its rotate_absolute."""
-    mark = sim.mark()
-    call(probe, Empty, "/reset")
-    sim.wait_log("Spawning turtle [turtle1]", mark)
-    client = ActionClient(probe, RotateAbsolute, "/turtle1/rotate_absolute")
-    assert client.wait_for_server(DEADLINE), "no /turtle1/rotate_absolute server"
+def turtle(sim: Program, probe: Any) -> Iterator[str]:
+    """A new turtle for one test, heading 0 (a turtle of its own: no server of an earlier
+    turtle of the same name can still be in the graph)."""
+    name = call(probe, Spawn, "/spawn", x=5.5, y=5.5, theta=0.0, name="").name
+    assert name
+    yield name
+    call(probe, Kill, "/kill", name=name)
+
+
+@pytest.fixture
+def rotate(turtle: str, probe: Any) -> Iterator[ActionClient]:
+    """A client of the turtle's rotate_absolute."""
+    client = ActionClient(probe, RotateAbsolute, f"/{turtle}/rotate_absolute")
+    assert client.wait_for_server(DEADLINE), f"no /{turtle}/rotate_absolute server"
     yield client
     client.destroy()
 
@@ -98,10 +105,12 @@ def test_a_new_goal_aborts_the_previous_one(sim: Program, probe: Any, rotate: An
     assert second.end().status == GoalStatus.STATUS_SUCCEEDED
 
 
-def test_a_velocity_command_aborts_the_goal(sim: Program, probe: Any, rotate: Any) -> None:
+def test_a_velocity_command_aborts_the_goal(
+    sim: Program, probe: Any, turtle: str, rotate: Any
+) -> None:
     mark = sim.mark()
     goal = Goal(probe, rotate, 2.5)
     goal.feedback(3)
-    drive(probe, "turtle1", x=0.5)
+    drive(probe, turtle, x=0.5)
     assert goal.end().status == GoalStatus.STATUS_ABORTED
     sim.wait_log("Velocity command received during rotation goal. Aborting goal", mark)

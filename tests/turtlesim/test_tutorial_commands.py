@@ -132,7 +132,8 @@ def test_teleop_key_drives_turtle1_with_the_arrow_and_action_keys(
     sim: Program, probe: Any, poses: Any
 ) -> None:
     got = poses("turtle1")
-    command = shlex.join([*LAUNCHKIT, "exec", "turtlesim", "turtle_teleop_key"])
+    debug = ["--ros-args", "--log-level", "teleop_turtle:=debug"]  # its goal responses
+    command = shlex.join([*LAUNCHKIT, "exec", "turtlesim", "turtle_teleop_key", *debug])
     child = pexpect.spawn("/bin/sh", ["-c", f"{command}; echo EXIT=$?"], encoding="utf-8")
     try:
         child.expect_exact("Reading from keyboard", timeout=DEADLINE)
@@ -148,17 +149,17 @@ def test_teleop_key_drives_turtle1_with_the_arrow_and_action_keys(
         child.send("\x1b[D")  # the left arrow: turn left at scale_angular (2.0)
         spin_until(probe, lambda: any(p.angular_velocity == 2.0 for p in got), "turtle1 turning")
         child.send("r")  # rotate_absolute to 1.5708 (north)
+        child.expect_exact("Goal response received", timeout=DEADLINE)
         spin_until(
             probe, lambda: any(abs(p.theta - 1.5708) < 0.02 for p in got), "turtle1 facing north"
         )
-        child.send("d")  # to 3.1416 (west), canceled by F on its way there
-        spin_until(probe, lambda: any(p.theta > 1.8 for p in got), "turtle1 turning west")
+        mark = sim.mark()
+        child.send("c")  # to -2.3562 (south-west), the long way round, canceled by F
+        child.expect_exact("Goal response received", timeout=DEADLINE)  # F cancels this one
         child.send("f")
-        spin_until(
-            probe,
-            lambda: any(p.angular_velocity == 0.0 and 1.8 < p.theta < 3.0 for p in got),
-            "turtle1 stopped short of west",
-        )
+        sim.wait_log("Rotation goal canceled", mark)
+        spin_until(probe, lambda: got[-1].angular_velocity == 0.0, "turtle1 stopped")
+        assert abs(got[-1].theta + 2.3562) > 0.1  # short of south-west
         child.send("q")
         child.expect_exact("EXIT=0", timeout=DEADLINE)
     finally:

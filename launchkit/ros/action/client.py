@@ -270,12 +270,10 @@ class ActionClient:
             if ref is None:
                 continue
             goal_handle = ref()
-            if goal_handle is None:
-                del self._goal_handles[goal_uuid]
-                continue
-            goal_handle._status = goal_status.status
-            if goal_status.status not in ACTIVE:
-                del self._goal_handles[goal_uuid]
+            if goal_handle is not None:
+                goal_handle._status = goal_status.status
+            if goal_handle is None or goal_status.status not in ACTIVE:
+                self._goal_handles.pop(goal_uuid, None)
 
     # the server -------------------------------------------------------------------------------
     def server_is_ready(self) -> bool:
