@@ -4,7 +4,12 @@ from __future__ import annotations
 
 import os
 import signal
+import subprocess
+import sys
 from pathlib import Path
+
+from launchkit.testing import _procscan
+from launchkit.testing._deadline import Deadline, scaled
 
 
 def _alive(pid: int) -> bool:
@@ -56,6 +61,28 @@ def test_a_process_escaping_its_group_is_ended_by_the_launch_itself(launch):
     handle.stop()
 
     assert not _alive(escaped)
+
+
+def test_the_last_sweep_kills_and_names_what_is_left_of_a_launchs_groups():
+    # The plugin's safety net where a launch cannot contain its processes (no cgroup, no
+    # subreaper): what is left of its groups after the grace is SIGKILLed and named, and the
+    # teardown raises ProcessLeftBehind with those names.
+    code = (
+        "import signal, time; signal.signal(signal.SIGTERM, signal.SIG_IGN); "
+        "print('up', flush=True); time.sleep(600)"
+    )
+    stubborn = subprocess.Popen(
+        [sys.executable, "-c", code], start_new_session=True, stdout=subprocess.PIPE, text=True
+    )
+    with stubborn:
+        try:
+            assert stubborn.stdout is not None and stubborn.stdout.readline() == "up\n"
+            left = _procscan.sweep([stubborn.pid], Deadline(0.2))
+            assert [process.pid for process in left] == [stubborn.pid]
+            assert "time.sleep(600)" in left[0].cmdline
+            assert stubborn.wait(timeout=scaled(10)) == -signal.SIGKILL
+        finally:
+            stubborn.kill()  # (a no-op once it is reaped)
 
 
 def test_a_hanging_launcher_is_escalated_by_the_plugin(launch):
