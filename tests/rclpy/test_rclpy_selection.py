@@ -152,3 +152,20 @@ def test_every_face_module_imports_and_names_what_it_exports() -> None:
     assert result.returncode == 0, result.stderr
     count, where = result.stdout.split()
     assert int(count) >= 30 and where == "launchkit.ros.executors"
+
+
+@pytest.mark.skipif(
+    not (Path(sys.prefix) / "share" / "ament_index" / "resource_index" / "packages").is_dir(),
+    reason="no ROS packages installed with pip here (the ros-jazzy wheels: CPython 3.11 only)",
+)
+def test_packages_the_wheels_installed_come_from_launchkits_message_layer() -> None:
+    # The wheels put test_msgs' Python package on sys.path: without the interpreter's prefix on
+    # AMENT_PREFIX_PATH, `import test_msgs.action` gave their rosidl class beside launchkit's
+    # rclpy, two ROS layers mixed in one process.
+    code = "import test_msgs.action as a, std_msgs.msg as m; print(type(a.Fibonacci).__module__)"
+    env = _env(AMENT_PREFIX_PATH=None, **face.environment(_env()))
+    done = subprocess.run(
+        [sys.executable, "-c", code], env=env, capture_output=True, text=True, timeout=120
+    )
+    assert done.returncode == 0, done.stderr
+    assert done.stdout.strip() == "launchkit.ros.msgs._classes"

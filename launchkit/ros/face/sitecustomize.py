@@ -10,6 +10,19 @@ import os
 import sys
 
 
+def _own_prefix_on_ament_path() -> None:
+    """Put this interpreter's prefix on ``AMENT_PREFIX_PATH`` where ROS packages were installed
+    into it with pip (the ros-jazzy wheels keep an ament index there): their interface packages
+    then come from launchkit's message layer like any other, never as the wheels' own rosidl
+    classes beside launchkit's rclpy."""
+    index = os.path.join(sys.prefix, "share", "ament_index", "resource_index", "packages")
+    if not os.path.isdir(index):
+        return
+    paths = [p for p in os.environ.get("AMENT_PREFIX_PATH", "").split(os.pathsep) if p]
+    if sys.prefix not in paths:
+        os.environ["AMENT_PREFIX_PATH"] = os.pathsep.join([*paths, sys.prefix])
+
+
 def _install_message_packages() -> None:
     try:
         from launchkit.ros.msgs import install
@@ -29,5 +42,6 @@ def _chain() -> None:
     spec.loader.exec_module(module)
 
 
+_own_prefix_on_ament_path()
 _install_message_packages()
 _chain()
