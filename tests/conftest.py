@@ -22,6 +22,8 @@ from launchkit.runtime.recorder import Recorded, Recorder
 from tests import suite_env
 from tests.support import hosted_router
 
+pytest_plugins = ["tests.cpu_report"]
+
 # The suite's environment (tests/suite_env.py): set before pytest starts its xdist workers,
 # which inherit it; the private defaults again for each process (each worker its own: what its
 # module fixtures start and what its tests start must meet at the same router and domain).

@@ -90,6 +90,19 @@ def test_the_suite_environment_drops_the_shell_and_keeps_the_home_folder_clean(
         folder = Path(environment[name])
         assert folder.is_dir() and folder.is_relative_to(run), name
     assert environment[envvars.ROUTER_AUTOSTART] == "0"
+    assert "PYTHONPYCACHEPREFIX" not in environment
+
+
+def test_the_suite_keeps_bytecode_in_its_folder_where_the_shell_forbids_writing_it(
+    tmp_path: Path,
+) -> None:
+    shell = {"PATH": "/usr/bin:/bin", "PYTHONDONTWRITEBYTECODE": "1"}
+    environment = suite_env.suite_environment(shell, tmp_path)
+    assert "PYTHONDONTWRITEBYTECODE" not in environment
+    assert environment["PYTHONPYCACHEPREFIX"] == str(tmp_path / suite_env.BYTECODE)
+    assert (tmp_path / suite_env.BYTECODE).is_dir()
+    # a worker inherits the run's environment: the same again
+    assert suite_env.suite_environment(environment, tmp_path) == environment
 
 
 def test_this_process_runs_with_private_defaults() -> None:

@@ -46,7 +46,7 @@ from launchkit.testing._isolation import free_loopback_port
 from tests.stock.conftest import probe_node
 from tests.support import hosted_router
 from tests.viewer.conftest import Viewer, open_panel
-from tests.viewer.test_panels_graph import wait_drawn
+from tests.viewer.test_panels import wait_drawn
 
 DOC = Path(__file__).resolve().parents[2] / "docs" / "tutorials.md"
 DEADLINE = 120.0
