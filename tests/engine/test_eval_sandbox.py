@@ -3,7 +3,9 @@ expression can run long or grow large (issue #17, point 5; the time/size half of
 
 from __future__ import annotations
 
+import os
 import signal
+import subprocess
 import time
 from pathlib import Path
 
@@ -19,6 +21,7 @@ from launchkit.description.substitutions.sandbox import (
 )
 from launchkit.description.substitutions.sandbox_process import WALL_FACTOR, Evaluator
 from launchkit.errors import LaunchkitError
+from launchkit.testing._deadline import scaled
 from tests.conftest import EvaluateXml
 from tests.engine.launcher import run_launchkit
 
@@ -157,6 +160,23 @@ def test_an_evaluation_interrupted_leaves_no_answer_behind() -> None:
     finally:
         signal.setitimer(signal.ITIMER_REAL, 0)
         signal.signal(signal.SIGALRM, previous)
+        evaluator.close()
+
+
+def test_a_ctrl_c_at_the_terminal_leaves_the_evaluator_to_the_launcher() -> None:
+    # Ctrl-C reaches the launcher's whole process group: the evaluator printed a
+    # KeyboardInterrupt traceback and died, where the launcher ends it itself.
+    evaluator = Evaluator()
+    try:
+        assert evaluator.evaluate("1", [], Limits()) == "1"
+        proc = evaluator._proc
+        assert proc is not None
+        os.kill(proc.pid, signal.SIGINT)
+        with pytest.raises(subprocess.TimeoutExpired):
+            proc.wait(timeout=scaled(1))  # still there a second later
+        assert evaluator.evaluate("2 * 21", [], Limits()) == "42"
+        assert evaluator._proc is proc
+    finally:
         evaluator.close()
 
 

@@ -33,7 +33,11 @@ STARTUP_TIMEOUT = 30.0
 #: Wall time an expression may take, in multiples of its CPU time limit.
 WALL_FACTOR = 10.0
 _POLL = 0.02
+#: The evaluator's program. It ignores SIGINT first thing: a Ctrl-C at the terminal reaches the
+#: launcher's whole process group, and the launcher ends this process itself (its stdin closes,
+#: or it is killed), so a KeyboardInterrupt traceback from it would only be noise.
 _BOOT = (
+    "import signal; signal.signal(signal.SIGINT, signal.SIG_IGN); "
     "import sys; sys.path.insert(0, sys.argv.pop(1)); "
     "from launchkit.description.substitutions.sandbox_worker import main; main()"
 )
