@@ -82,6 +82,12 @@ class Launcher:
         """Send ``signum`` to the launcher process alone."""
         self.proc.send_signal(signum)
 
+    def ctrl_c(self) -> None:
+        """SIGINT to the launcher's process group, as Ctrl-C at its terminal sends it (to the
+        launcher and to the helpers it keeps in its group; each node leads a session of its
+        own)."""
+        os.killpg(self.proc.pid, signal.SIGINT)
+
     def finish(self, timeout: float = 30.0) -> int:
         """Wait for the launcher to exit and read the rest of its output; its exit status."""
         try:

@@ -8,7 +8,6 @@ spinning process for the whole test.
 
 from __future__ import annotations
 
-import signal
 import subprocess
 import sys
 import time
@@ -48,7 +47,7 @@ def test_ctrl_c_while_the_seed_launch_starts(
     launcher = Launcher("robot_wheel", "gazebo_and_rviz.launch.xml", cwd=tmp_path, env=env)
     try:
         launcher.wait_line("process started with pid", timeout=60, count=after)
-        launcher.signal(signal.SIGINT)
+        launcher.ctrl_c()
         interrupted = time.monotonic()
         status = launcher.finish(timeout=60)
         took = time.monotonic() - interrupted
