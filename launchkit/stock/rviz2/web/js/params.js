@@ -49,6 +49,9 @@ export class ParametersPanel {
     this.params = []; // {name, type, value, descriptor}
     this.open = false;
     this.sets = 0;
+    // The last set's outcome per parameter of the chosen node: a /parameter_events reload
+    // re-renders the rows, maybe before the set's answer comes, and must not lose it.
+    this.outcomes = new Map();
 
     const side = document.createElement("div");
     side.className = "node-list";
@@ -105,6 +108,7 @@ export class ParametersPanel {
   }
 
   choose(name) {
+    if (name !== this.node) this.outcomes.clear();
     this.node = name;
     this.listNodes();
     this.load();
@@ -149,7 +153,7 @@ export class ParametersPanel {
     let editor;
     if (param.type === 1) {
       editor = Object.assign(document.createElement("input"), { type: "checkbox", checked: Boolean(param.value) });
-      editor.addEventListener("change", () => this.set(param, editor.checked, row));
+      editor.addEventListener("change", () => this.set(param, editor.checked));
       cell.append(editor);
     } else if (param.type === 2 || param.type === 3) {
       const range = (param.type === 2 ? d.integer_range : d.floating_point_range) || [];
@@ -158,22 +162,24 @@ export class ParametersPanel {
         const { from_value: low, to_value: high, step } = range[0];
         const slider = Object.assign(document.createElement("input"), { type: "range", min: String(low), max: String(high), step: step ? String(step) : param.type === 2 ? "1" : "any", value: String(param.value), disabled: readOnly });
         slider.addEventListener("input", () => { editor.value = slider.value; });
-        slider.addEventListener("change", () => this.set(param, slider.value, row));
+        slider.addEventListener("change", () => this.set(param, slider.value));
         Object.assign(editor, { min: String(low), max: String(high) });
         cell.append(slider);
         row.dataset.range = `${low}..${high}`;
       }
-      editor.addEventListener("change", () => this.set(param, editor.value, row));
+      editor.addEventListener("change", () => this.set(param, editor.value));
       cell.append(editor);
     } else {
       const text = param.type === 4 ? String(param.value ?? "") : JSON.stringify(param.value ?? []);
       editor = Object.assign(document.createElement("input"), { type: "text", value: text, size: 24 });
-      editor.addEventListener("change", () => this.set(param, editor.value, row));
+      editor.addEventListener("change", () => this.set(param, editor.value));
       cell.append(editor);
     }
     editor.dataset.editor = param.name;
     editor.disabled = readOnly || param.type === 0;
     const result = Object.assign(document.createElement("span"), { className: "set-result" });
+    const outcome = this.outcomes.get(param.name);
+    if (outcome) Object.assign(result, outcome);
     cell.append(result);
     row.insertCell().textContent = TYPES[param.type] || String(param.type);
     const described = row.insertCell();
@@ -182,26 +188,29 @@ export class ParametersPanel {
     return row;
   }
 
-  async set(param, raw, row) {
-    const result = row.querySelector(".set-result");
+  async set(param, raw) {
     let value;
     try {
       value = toParameterValue(param.type, raw);
     } catch (error) {
-      result.textContent = ` ✗ ${error.message}`;
-      result.className = "set-result failed";
+      this.showOutcome(param.name, ` ✗ ${error.message}`, false);
       return;
     }
     try {
       const response = await this.call("set_parameters", { parameters: [{ name: param.name, value }] });
       const outcome = response.results[0];
       this.sets += 1;
-      result.textContent = outcome.successful ? " ✓" : ` ✗ ${outcome.reason}`;
-      result.className = `set-result ${outcome.successful ? "ok" : "failed"}`;
+      this.showOutcome(param.name, outcome.successful ? " ✓" : ` ✗ ${outcome.reason}`, outcome.successful);
       if (outcome.successful) param.value = valueOf(value);
     } catch (error) {
-      result.textContent = ` ✗ ${error.message}`;
-      result.className = "set-result failed";
+      this.showOutcome(param.name, ` ✗ ${error.message}`, false);
     }
+  }
+
+  showOutcome(name, text, ok) {
+    const outcome = { textContent: text, className: `set-result ${ok ? "ok" : "failed"}` };
+    this.outcomes.set(name, outcome);
+    const row = [...this.body.rows].find((r) => r.dataset.param === name);
+    if (row) Object.assign(row.querySelector(".set-result"), outcome);
   }
 }
