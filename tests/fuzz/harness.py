@@ -28,9 +28,13 @@ class Hung(BaseException):
 
 @contextmanager
 def time_bound(seconds: float) -> Iterator[None]:
-    """Raise :class:`Hung` in the body once ``seconds`` (scaled for slow machines) passed."""
+    """Raise :class:`Hung` in the body once ``seconds`` (scaled for slow machines) passed, or
+    after it where the alarm landed in code that swallows exceptions (a garbage collector
+    callback reports it as "unraisable" and carries on)."""
+    expired: list[bool] = []
 
     def expire(_signum: int, _frame: FrameType | None) -> None:
+        expired.append(True)
         raise Hung(f"still running after {seconds:g} s")
 
     previous = signal.signal(signal.SIGALRM, expire)
@@ -40,6 +44,8 @@ def time_bound(seconds: float) -> Iterator[None]:
     finally:
         signal.setitimer(signal.ITIMER_REAL, 0)
         signal.signal(signal.SIGALRM, previous)
+    if expired:
+        raise Hung(f"ran past {seconds:g} s (the alarm was swallowed where it fired)")
 
 
 def must_be_success_or_located_error(action: Callable[[], object]) -> LaunchkitError | None:

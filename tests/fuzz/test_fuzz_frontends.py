@@ -5,11 +5,14 @@ exception, never a hang (see harness.py). Bounded under CI by the ``ci`` profile
 
 from __future__ import annotations
 
+import time
+
+import pytest
 from hypothesis import given
 from hypothesis import strategies as st
 
 from tests.fuzz import strategies as S
-from tests.fuzz.harness import check_file, load_params
+from tests.fuzz.harness import Hung, check_file, load_params, time_bound
 
 XML_SEEDS = S.seeds("launch_xml/*.xml", "tests/hostile/corpus/*.launch.xml")
 YAML_SEEDS = S.seeds("tests/corpus/yaml/*.yaml", "tests/hostile/corpus/*.launch.yaml")
@@ -55,3 +58,15 @@ def test_params_files(data: bytes) -> None:
 @given(st.one_of(S.params_file(), st.sampled_from(PARAMS_SEEDS)).flatmap(S.yaml_with_tags))
 def test_params_files_with_explicit_tags(data: bytes) -> None:
     load_params(data)
+
+
+def test_an_alarm_swallowed_where_it_fired_still_fails_the_example() -> None:
+    # A long run's only report was an "unraisable" Hung: the alarm had fired inside a garbage
+    # collector callback, which swallows exceptions, and the example carried on to pass.
+    with pytest.raises(Hung, match="swallowed"), time_bound(0.05):
+        deadline = time.monotonic() + 5.0
+        while time.monotonic() < deadline:
+            try:
+                time.sleep(0.01)
+            except Hung:
+                break  # swallowed, as a gc callback would
