@@ -16,12 +16,13 @@ import pytest
 import scenarios
 from rclpy_runs import LAUNCHKIT, PATIENCE, REAL, Runs, real_rclpy
 
-from launchkit.ros.action import ActionClient, ActionServer
+from launchkit.ros.action import ActionClient, ActionServer, GoalResponse
 from launchkit.ros.action.goal_state import GoalEvent, GoalStatus, transition
+from launchkit.ros.callback_groups import ReentrantCallbackGroup
 from launchkit.ros.context import Context, RCLError
 from launchkit.ros.executors import MultiThreadedExecutor
 from launchkit.ros.keyexpr import dds_type_name
-from launchkit.ros.msgs import get_action, type_hash
+from launchkit.ros.msgs import get_action, get_message, type_hash
 from launchkit.ros.node import Node
 
 FLAVOURS = [LAUNCHKIT, pytest.param(REAL, marks=real_rclpy)]
@@ -179,3 +180,48 @@ def test_goal_transitions_are_rcl_actions() -> None:
         transition(GoalStatus.STATUS_ACCEPTED, GoalEvent.SUCCEED)
     with pytest.raises(RCLError):
         transition(GoalStatus.STATUS_SUCCEEDED, GoalEvent.ABORT)
+
+
+def test_feedback_that_overtakes_the_goal_response_comes_after_it(spinning: Node) -> None:
+    # Zenoh may bring a goal's first feedback before the response accepting it (another key,
+    # another thread): the goal callback below publishes feedback for the goal and accepts only
+    # once that feedback is in the client's process, so it always arrives first here
+    action = get_action(FIBONACCI)
+    goal_id = get_message("unique_identifier_msgs/msg/UUID")(uuid=list(range(16)))
+    arrived = threading.Event()
+    spinning.create_subscription(
+        action.Impl.FeedbackMessage,
+        "/fibonacci/_action/feedback",
+        lambda _: arrived.set(),
+        10,
+        callback_group=ReentrantCallbackGroup(),
+    )
+    early = spinning.create_publisher(
+        action.Impl.FeedbackMessage, "/fibonacci/_action/feedback", 10
+    )
+
+    def accept_after_feedback(goal: Any) -> GoalResponse:
+        early.publish(action.Impl.FeedbackMessage(goal_id=goal_id))
+        assert arrived.wait(PATIENCE), "the early feedback never came"
+        return GoalResponse.ACCEPT
+
+    ActionServer(
+        spinning,
+        action,
+        "fibonacci",
+        _succeed,
+        goal_callback=accept_after_feedback,
+        callback_group=ReentrantCallbackGroup(),
+    )
+    client = ActionClient(spinning, action, "fibonacci")
+    assert client.wait_for_server(PATIENCE)
+    events: list[str] = []
+    sent = client.send_goal_async(
+        action.Goal(order=2), lambda _: events.append("feedback"), goal_uuid=goal_id
+    )
+    sent.add_done_callback(lambda _: events.append("accepted"))
+    deadline = time.monotonic() + PATIENCE
+    while len(events) < 2:
+        assert time.monotonic() < deadline, events
+        time.sleep(0.01)
+    assert events == ["accepted", "feedback"]

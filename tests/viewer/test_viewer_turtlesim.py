@@ -107,7 +107,7 @@ def test_the_panel_draws_the_turtles_their_trails_and_the_background(
     )
     viewer.page.evaluate("window.__turtlesim.choose('/turtlesim1/turtlesim')")
     viewer.wait(
-        "window.__turtlesim.stats.node === '/turtlesim1/turtlesim' "
+        "window.__turtlesim.stats.drawn === '/turtlesim1/turtlesim' "
         "&& window.__turtlesim.stats.turtles.length === 1",
         "turtlesim1 shown",
     )
@@ -132,7 +132,7 @@ def test_the_panel_draws_the_turtles_their_trails_and_the_background(
 
     # the other turtlesim's world: its own turtle, no trail
     viewer.page.evaluate("window.__turtlesim.choose('/turtlesim2/turtlesim')")
-    viewer.wait("window.__turtlesim.stats.node === '/turtlesim2/turtlesim'", "turtlesim2 shown")
+    viewer.wait("window.__turtlesim.stats.drawn === '/turtlesim2/turtlesim'", "turtlesim2 shown")
     viewer.wait(
         f"window.__turtlesim.pixel({pixel_of((centre + end) / 2, centre)[0]}, "
         f"{pixel_of(centre, centre)[1]})[0] === {BACKGROUND[0]}",
@@ -145,7 +145,7 @@ def test_the_panel_draws_the_turtles_their_trails_and_the_background(
     late.wait("window.__turtlesim && window.__turtlesim.stats.scenes > 0", "the late page's scene")
     late.page.evaluate("window.__turtlesim.choose('/turtlesim1/turtlesim')")
     late.wait(
-        "window.__turtlesim.stats.node === '/turtlesim1/turtlesim' "
+        "window.__turtlesim.stats.drawn === '/turtlesim1/turtlesim' "
         "&& window.__turtlesim.stats.snapshots > 0",
         "the late page's trails snapshot",
     )

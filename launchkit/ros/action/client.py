@@ -122,6 +122,10 @@ class ActionClient:
         # as feedback published before the result may still be on its way (another key, another
         # Zenoh thread), then forgotten (rclpy forgets them with the result)
         self._finished: deque[bytes] = deque()
+        # the feedback of goals sent and not yet answered, in order of arrival: Zenoh may bring
+        # a goal's first feedback before the response accepting it (another key, another
+        # thread); it is held until the response has been handled, as the server sent them
+        self._early_feedback: dict[bytes, list[Any]] = {}
         self._feedback_lock = threading.Lock()
         self._uuid_type = get_message("unique_identifier_msgs/msg/UUID")
         self._cancel_type = get_service(names.CANCEL_GOAL_TYPE)
@@ -175,7 +179,10 @@ class ActionClient:
         )
         request.goal = goal
         if feedback_callback is not None:
-            self._feedback_callbacks[bytes(request.goal_id.uuid)] = feedback_callback
+            goal_uuid = bytes(request.goal_id.uuid)
+            with self._feedback_lock:
+                self._feedback_callbacks[goal_uuid] = feedback_callback
+                self._early_feedback[goal_uuid] = []
         return request
 
     def _goal_handle(self, goal_id: Any, response: Any) -> ClientGoalHandle:
@@ -200,6 +207,12 @@ class ActionClient:
         future = Future(executor=self._node.scheduler)
 
         def answered(call: Future) -> None:
+            try:
+                complete(call)
+            finally:
+                self._release_early_feedback(request)
+
+        def complete(call: Future) -> None:
             if call.cancelled():
                 future.cancel()
                 return
@@ -222,7 +235,10 @@ class ActionClient:
     def send_goal(self, goal: Any, **kwargs: Any) -> Any:
         """Send ``goal`` and wait for its end: the ``GetResult.Response`` (status, result)."""
         request = self._goal_request(goal, kwargs.get("feedback_callback"), kwargs.get("goal_uuid"))
-        response = self._goal_client.call(request)
+        try:
+            response = self._goal_client.call(request)
+        finally:
+            self._release_early_feedback(request)
         return self._get_result(self._goal_handle(request.goal_id, response))
 
     # cancel and result --------------------------------------------------------------------------
@@ -259,9 +275,35 @@ class ActionClient:
                 self._feedback_callbacks.pop(self._finished.popleft(), None)
 
     async def _on_feedback(self, message: Any) -> None:
-        callback = self._feedback_callbacks.get(bytes(message.goal_id.uuid))
+        goal_uuid = bytes(message.goal_id.uuid)
+        with self._feedback_lock:
+            early = self._early_feedback.get(goal_uuid)
+            if early is not None:
+                early.append(message)
+                return
+            callback = self._feedback_callbacks.get(goal_uuid)
         if callback is not None:
             await await_or_execute(callback, message)
+
+    def _release_early_feedback(self, request: Any) -> None:
+        """The goal's response is in (or its call failed): hand the feedback that came before
+        it to the executor, after the callbacks of the goal's future."""
+        goal_uuid = bytes(request.goal_id.uuid)
+        if goal_uuid in self._early_feedback:
+            self._node.scheduler.create_task(self._deliver_early_feedback, goal_uuid)
+
+    async def _deliver_early_feedback(self, goal_uuid: bytes) -> None:
+        # one at a time: feedback arriving meanwhile is still held, and comes after
+        while True:
+            with self._feedback_lock:
+                early = self._early_feedback.get(goal_uuid)
+                if not early:
+                    self._early_feedback.pop(goal_uuid, None)
+                    return
+                message = early.pop(0)
+                callback = self._feedback_callbacks.get(goal_uuid)
+            if callback is not None:
+                await await_or_execute(callback, message)
 
     def _on_status(self, message: Any) -> None:
         for goal_status in message.status_list:

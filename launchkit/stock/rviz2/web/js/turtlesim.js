@@ -176,7 +176,8 @@ export class TurtlesimPanel {
     this.open = false;
     this.seen = false;
     this.pending = false;
-    this.stats = { scenes: 0, snapshots: 0, strokes: 0, frames: 0, node: null, turtles: [], background: null };
+    // node: the one chosen; drawn: the one whose world the last frame drew (null: none yet)
+    this.stats = { scenes: 0, snapshots: 0, strokes: 0, frames: 0, node: null, drawn: null, turtles: [], background: null };
 
     const bar = Object.assign(document.createElement("div"), { className: "panel-bar" });
     this.title = Object.assign(document.createElement("span"), { id: "turtlesim-title", textContent: "no turtlesim runs" });
@@ -291,6 +292,7 @@ export class TurtlesimPanel {
     if (!scene) {
       g.fillStyle = "#202124";
       g.fillRect(0, 0, this.canvas.width, this.canvas.height);
+      this.stats.drawn = null;
       return;
     }
     const [width, height] = scene.size;
@@ -307,6 +309,11 @@ export class TurtlesimPanel {
       drawTurtle(g, turtle.image);
       g.restore();
     }
-    Object.assign(this.stats, { frames: this.stats.frames + 1, turtles: scene.turtles, background: scene.background });
+    Object.assign(this.stats, {
+      frames: this.stats.frames + 1,
+      drawn: world.node,
+      turtles: scene.turtles,
+      background: scene.background,
+    });
   }
 }
