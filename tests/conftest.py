@@ -76,6 +76,13 @@ def pytest_configure(config: pytest.Config) -> None:
         signal.signal(signal.SIGINT, signal.default_int_handler)
 
 
+def pytest_collection_modifyitems(items: list[pytest.Item]) -> None:
+    """The tests marked ``long`` first, in their order: xdist hands out tests in collection
+    order, and a minute-long test handed out last keeps one worker busy while the other idles
+    (the tutorial's test ran last and stretched the suite's end by its whole length)."""
+    items.sort(key=lambda item: item.get_closest_marker("long") is None)
+
+
 def pytest_unconfigure(config: pytest.Config) -> None:
     """Remove the run's folder (see above), once its last process is done with it."""
     if _OWN_RUN_DIR:

@@ -22,8 +22,11 @@ from email.parser import HeaderParser
 from importlib.metadata import Distribution, distribution
 from pathlib import Path
 
+import pytest
 from packaging.requirements import Requirement
 from packaging.utils import canonicalize_name
+
+pytestmark = pytest.mark.long  # started first: see tests/conftest.py
 
 REPO = Path(__file__).resolve().parents[1]
 

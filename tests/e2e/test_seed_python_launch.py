@@ -7,8 +7,12 @@ from __future__ import annotations
 import sys
 from typing import Any
 
+import pytest
+
 from launchkit import api
 from launchkit.packages import PackageIndex
+
+pytestmark = pytest.mark.long  # started first: see tests/conftest.py
 
 
 def describe(name: str, **arguments: str) -> str:

@@ -11,7 +11,11 @@ import sys
 import time
 from pathlib import Path
 
+import pytest
+
 from launchkit.testing._isolation import free_loopback_port
+
+pytestmark = pytest.mark.long  # started first: see tests/conftest.py
 
 HERE = Path(__file__).parent / "launch"
 

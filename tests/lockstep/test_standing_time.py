@@ -13,6 +13,8 @@ import pytest
 
 from launchkit.testing import WaitTimeout
 
+pytestmark = pytest.mark.long  # started first: see tests/conftest.py
+
 LAUNCH = Path(__file__).parent / "launch" / "outside.launch.xml"
 
 

@@ -48,6 +48,8 @@ from tests.support import hosted_router
 from tests.viewer.conftest import Viewer, open_panel
 from tests.viewer.test_panels import wait_drawn
 
+pytestmark = pytest.mark.long  # started first: see tests/conftest.py
+
 DOC = Path(__file__).resolve().parents[2] / "docs" / "tutorials.md"
 DEADLINE = 120.0
 DOC_PORT = "8765"

@@ -26,6 +26,8 @@ from launchkit.ros.msgs import deserialize
 from tests.stock.foxglove_client import receive_topics
 from tests.viewer.conftest import Viewer
 
+pytestmark = pytest.mark.long  # started first: see tests/conftest.py
+
 CAMERA = "/camera1/image_raw"
 LINKS = ["wheel_left_link", "wheel_right_link", "caster", "base", "lidar", "camera"]
 

@@ -17,8 +17,12 @@ import time
 from pathlib import Path
 from typing import Any
 
+import pytest
+
 from launchkit.testing._isolation import free_loopback_port
 from tests.viewer.conftest import keep_screenshot
+
+pytestmark = pytest.mark.long  # started first: see tests/conftest.py
 
 PEN = [179, 184, 255, 255]
 BACKGROUND = [69, 86, 255, 255]
