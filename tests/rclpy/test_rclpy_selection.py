@@ -4,6 +4,7 @@ the face's ``sitecustomize`` chaining to the one it shadows."""
 
 from __future__ import annotations
 
+import json
 import os
 import subprocess
 import sys
@@ -13,6 +14,8 @@ import pytest
 
 from launchkit.envvars import RCLPY
 from launchkit.ros import face
+from launchkit.ros.msgs._packages import BUILTIN_PACKAGES
+from launchkit.ros.msgs._registry import registry
 
 WHICH = """\
 import sys, rclpy
@@ -130,6 +133,31 @@ def test_sitecustomize_runs_the_one_it_shadows(tmp_path: Path) -> None:
     lines = result.stdout.splitlines()
     assert lines[0] == "yes False"  # chained; no message package imported before it is asked
     assert "data=''" in lines[1]  # launchkit's std_msgs, not the installed one
+
+
+def test_the_face_loads_the_message_layer_only_when_a_message_package_is_imported() -> None:
+    # installing the import hook at start-up must not load numpy, rosbags and the classes
+    # (0.4 s of CPU) into every Python process a launch starts
+    layer = ("numpy", "rosbags.typesys.store", "launchkit.ros.msgs._registry")
+    probe = (
+        f"import sys, json\nlayer = {layer!r}\n"
+        "before = [m for m in layer if m in sys.modules]\n"
+        "import example_interfaces.srv, geometry_msgs.msg\n"
+        "print(json.dumps([before, [m for m in layer if m in sys.modules]]))\n"
+    )
+    result = subprocess.run(
+        [sys.executable, "-c", probe],
+        capture_output=True,
+        text=True,
+        env=_env(PYTHONPATH=str(face.path())),
+        timeout=120,
+    )
+    assert result.returncode == 0, result.stderr
+    assert json.loads(result.stdout) == [[], list(layer)]  # loaded by the first message import
+
+
+def test_the_hooks_list_of_built_in_packages_is_the_stores() -> None:
+    assert BUILTIN_PACKAGES == registry().builtin_packages()
 
 
 def test_every_face_module_imports_and_names_what_it_exports() -> None:

@@ -22,9 +22,12 @@ import sys
 import threading
 import types
 from collections.abc import Sequence
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
-from launchkit.ros.msgs._registry import KINDS, registry
+from launchkit.ros.msgs._packages import BUILTIN_PACKAGES, KINDS, interface_packages
+
+if TYPE_CHECKING:
+    from launchkit.ros.msgs._registry import Registry
 
 _PREFIX = "launchkit.ros.msgs."
 _looking = threading.local()
@@ -67,12 +70,13 @@ class InterfaceFinder(importlib.abc.MetaPathFinder, importlib.abc.Loader):
             _looking.busy = False
 
     def _knows(self, pkg: str) -> bool:
-        reg = registry()
-        if pkg in reg.builtin_packages():
+        # from names and folders alone: the message layer loads when a package is imported
+        if pkg in BUILTIN_PACKAGES:
             return True
-        if self.ament and reg.package_folder(pkg, registered=False) is not None:
+        packages = interface_packages()
+        if self.ament and packages.folder(pkg, registered=False) is not None:
             return True
-        return self.registered and reg.package_folder(pkg) is not None
+        return self.registered and packages.folder(pkg) is not None
 
     def create_module(self, spec: importlib.machinery.ModuleSpec) -> types.ModuleType | None:
         return None
@@ -86,6 +90,14 @@ class InterfaceFinder(importlib.abc.MetaPathFinder, importlib.abc.Loader):
             _fill_kind_module(module, parts[0], parts[1])
         else:
             _fill_interface_module(module, parts[0], parts[1], parts[2])
+
+
+def registry() -> Registry:
+    """The process's registry, loaded when a message package is first imported (not when the
+    hook is installed: see :mod:`._packages`)."""
+    from launchkit.ros.msgs._registry import registry as process_registry
+
+    return process_registry()
 
 
 def _lookup(type_name: str) -> Any:

@@ -17,21 +17,20 @@ come from rosbags' ``Typestore``, given the same definitions (``hash_rihs01``,
 
 from __future__ import annotations
 
-import os
 import threading
 from pathlib import Path
 from typing import Any, cast
 
 from rosbags.typesys.store import Typestore
 
-from launchkit.errors import Location, PackageNotFoundError, UserError
+from launchkit.errors import Location, UserError
 from launchkit.ros.msgs import _classes, _spec
 from launchkit.ros.msgs._builtin import DEFAULTS, INTERFACES
 from launchkit.ros.msgs._codec import Codec, CodecFunctions
 from launchkit.ros.msgs._defcache import definitions
 from launchkit.ros.msgs._interface_files import InterfaceFileError, Parsed, parse_interface
+from launchkit.ros.msgs._packages import KINDS, InterfacePackages, interface_packages
 
-KINDS = ("msg", "srv", "action")
 _EXTENSIONS = {"msg": ".msg", "srv": ".srv", "action": ".action"}
 _ACTION_SERVICES = ("_SendGoal", "_GetResult")
 
@@ -59,9 +58,8 @@ class Registry:
         self._classes: dict[str, Any] = {}
         self._codecs: dict[str, Codec] = {}
         self._jazzy: dict[str, Any] | None = None
-        self._index: Any = index
+        self._packages = interface_packages() if index is None else InterfacePackages(index)
         self._hashes: dict[str, str] = {}
-        self._folders: dict[tuple[str, bool], Path | None] = {}
         self._definitions = Typestore()  # rosbags' hash and .msg text, from our definitions
         self.functions = CodecFunctions(self.spec, self.message_class, _classes.CHECK_FIELDS)
 
@@ -142,33 +140,12 @@ class Registry:
 
     def index(self) -> Any:
         """The package index (made on first use, from the environment as it is then)."""
-        if self._index is None:
-            from launchkit.packages import PackageIndex
-
-            self._index = PackageIndex()
-        return self._index
+        return self._packages.index()
 
     def package_folder(self, pkg: str, registered: bool = True) -> Path | None:
         """The share directory of ``pkg`` if it has interface folders (``registered``: also
-        look at packages registered by Python distributions, which costs a first lookup).
-        Remembered: the import hook asks about every module a process imports."""
-        key = (pkg, registered)
-        if key not in self._folders:
-            self._folders[key] = self._interface_folder(pkg, registered)
-        return self._folders[key]
-
-    def _interface_folder(self, pkg: str, registered: bool) -> Path | None:
-        index = self.index()
-        try:
-            found = index.find(pkg) if registered else index.ament_package(pkg)
-        except PackageNotFoundError:
-            return None
-        if found is None:
-            return None
-        share: Path = found.share
-        if any(os.path.isdir(share / kind) for kind in KINDS):
-            return share
-        return None
+        look at packages registered by Python distributions, which costs a first lookup)."""
+        return self._packages.folder(pkg, registered)
 
     def _load_package(self, pkg: str) -> None:
         if pkg in self._loaded_packages:
