@@ -33,6 +33,19 @@ def _env(**changes: str | None) -> dict[str, str]:
     return env
 
 
+def _with_the_face(probe: str) -> subprocess.CompletedProcess[str]:
+    """Run Python code ``probe`` with launchkit's face first on ``PYTHONPATH``; it must succeed."""
+    result = subprocess.run(
+        [sys.executable, "-c", probe],
+        capture_output=True,
+        text=True,
+        env=_env(PYTHONPATH=str(face.path())),
+        timeout=120,
+    )
+    assert result.returncode == 0, result.stderr
+    return result
+
+
 def _ros_install(root: Path) -> Path:
     """A prefix laid out as a sourced ROS 2 install's, with an rclpy package in it."""
     package = root / "lib" / "python3.11" / "site-packages" / "rclpy"
@@ -145,14 +158,7 @@ def test_the_face_loads_the_message_layer_only_when_a_message_package_is_importe
         "import example_interfaces.srv, geometry_msgs.msg\n"
         "print(json.dumps([before, [m for m in layer if m in sys.modules]]))\n"
     )
-    result = subprocess.run(
-        [sys.executable, "-c", probe],
-        capture_output=True,
-        text=True,
-        env=_env(PYTHONPATH=str(face.path())),
-        timeout=120,
-    )
-    assert result.returncode == 0, result.stderr
+    result = _with_the_face(probe)
     assert json.loads(result.stdout) == [[], list(layer)]  # loaded by the first message import
 
 
@@ -170,14 +176,7 @@ def test_every_face_module_imports_and_names_what_it_exports() -> None:
         "    assert not missing, (name, missing)\n"
         "print(len(names), rclpy.executors.MultiThreadedExecutor.__module__)\n"
     )
-    result = subprocess.run(
-        [sys.executable, "-c", probe],
-        capture_output=True,
-        text=True,
-        env=_env(PYTHONPATH=str(face.path())),
-        timeout=120,
-    )
-    assert result.returncode == 0, result.stderr
+    result = _with_the_face(probe)
     count, where = result.stdout.split()
     assert int(count) >= 30 and where == "launchkit.ros.executors"
 
