@@ -220,6 +220,9 @@ def test_feedback_that_overtakes_the_goal_response_comes_after_it(spinning: Node
         action.Goal(order=2), lambda _: events.append("feedback"), goal_uuid=goal_id
     )
     sent.add_done_callback(lambda _: events.append("accepted"))
+    assert sent.wait(PATIENCE)
+    result = sent.result().get_result_async()  # the goal ends before the executor does
+    assert result.wait(PATIENCE) and result.result().status == GoalStatus.STATUS_SUCCEEDED
     deadline = time.monotonic() + PATIENCE
     while len(events) < 2:
         assert time.monotonic() < deadline, events
