@@ -13,6 +13,8 @@ import threading
 from pathlib import Path
 from typing import Any
 
+from launchkit.errors import PackageNotFoundError
+
 KINDS = ("msg", "srv", "action")
 
 #: the packages of the built-in store (rosbags' ROS 2 Jazzy messages and launchkit's services):
@@ -77,8 +79,6 @@ class InterfacePackages:
         return self._folders[key]
 
     def _find(self, pkg: str, registered: bool) -> Path | None:
-        from launchkit.errors import PackageNotFoundError
-
         index = self.index()
         try:
             found = index.find(pkg) if registered else index.ament_package(pkg)
