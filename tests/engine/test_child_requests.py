@@ -189,11 +189,17 @@ def test_a_requested_child_is_a_process_of_the_launch_for_the_plugin(launch, tmp
     path.write_text(f"<launch>{owner(tmp_path, then=BAD_REQUESTS_THEN_STOP)}</launch>")
     handle = launch(path)
     # "once" (no respawn) exits with SIGINT before the owner is done; the launcher said it was
-    # stopping it, so that exit is not a death that fails the wait
+    # stopping it, so that exit is not a death that fails the wait. A SIGINT that reaches a
+    # Python child while it is still importing can be lost in the import system (CPython prints
+    # "Exception ignored ... KeyboardInterrupt" and goes on): the launcher's SIGTERM 5 s later
+    # ends it then, as ROS's escalation does (seen once, on a loaded machine).
+    once_stopped = {0, 1, -2, -15}
     handle.process("owner").wait_output("owner done")
-    assert handle.process("once").returncode in (0, 1, -2)
+    assert handle.process("once").returncode in once_stopped
     other = handle.process("other")
     assert other.wait_output("kid up") == "kid up"
     assert other.label == "other-4"
     result = handle.stop()  # the plugin's survivor sweep includes the requested children
-    result.assert_exit_codes({"owner": {0, -2}, "other": {0, -2}, "*": {0, 1, -2}})
+    result.assert_exit_codes(
+        {"owner": {0, -2}, "other": {0, -2}, "once": once_stopped, "*": {0, 1, -2}}
+    )
