@@ -46,12 +46,13 @@ def marker() -> Iterator[str]:
         os.kill(pid, signal.SIGKILL)
 
 
-def launch_cgroups() -> set[str]:
-    """The launch cgroups under this process's own (none left after a launch)."""
+def launch_cgroups(launcher_pid: int) -> set[str]:
+    """The cgroups of the launcher ``launcher_pid`` under this process's own (none left after
+    its launch). Only its own: the launches of the other tests running meanwhile have theirs."""
     folder = cgroup_v2_path()
     if folder is None or not folder.is_dir():
         return set()
-    return {p.name for p in folder.iterdir() if p.name.startswith("launchkit-")}
+    return {p.name for p in folder.iterdir() if p.name.startswith(f"launchkit-{launcher_pid}-")}
 
 
 @pytest.mark.parametrize("mode", MODES)
@@ -70,7 +71,6 @@ def test_detached_descendants_go_with_the_launch(
     env = {"ROS_LOG_DIR": str(tmp_path)}
     if mode == "subreaper":
         env["LAUNCHKIT_NO_CGROUP"] = "1"
-    before = launch_cgroups()
     launcher = Launcher(str(launch), cwd=tmp_path, env=env)
     try:
         launcher.wait_line("[detacher-1] detached", timeout=30)
@@ -91,6 +91,6 @@ def test_detached_descendants_go_with_the_launch(
         if launcher.proc.poll() is None:
             launcher.kill()
     deadline = time.monotonic() + 10
-    while launch_cgroups() - before:  # the orphan guard removes it after a SIGKILL
-        assert time.monotonic() < deadline, f"left: {launch_cgroups() - before}"
+    while launch_cgroups(launcher.proc.pid):  # the orphan guard removes it after a SIGKILL
+        assert time.monotonic() < deadline, f"left: {launch_cgroups(launcher.proc.pid)}"
         time.sleep(0.05)
