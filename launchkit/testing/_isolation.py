@@ -46,20 +46,21 @@ def domain_id() -> int:
     different domains, and xdist workers (``gw0``, ``gw1``, ...) and test runs start apart.
 
     The router port is what really separates launches; the domain is a second fence, for real
-    DDS nodes (the bridge's tests). A domain some DDS participant on this machine already uses
-    (another test run's, say) is passed over while a free one is left.
+    DDS nodes (the bridge's tests). The domain the shell's ``ROS_DOMAIN_ID`` names (where the
+    user's own nodes may be running) is never chosen, and a domain some DDS participant on this
+    machine already uses (another test run's, say) is passed over while a free one is left.
     """
     worker = os.environ.get("PYTEST_XDIST_WORKER", "gw0").removeprefix("gw")
     # the process id spreads two test runs started at the same moment (their DDS ports are
     # not bound yet when both choose)
     offset = int(worker) * _WORKER_SPREAD if worker.isdigit() else 0
     offset += os.getpid() % _WORKER_SPREAD
+    users = os.environ.get(ROS_DOMAIN_ENV, "0").strip()
+    start = offset + next(_counter)
+    candidates = [1 + (start + step) % _DOMAINS for step in range(_DOMAINS)]
+    candidates = [domain for domain in candidates if str(domain) != users]
     busy = _udp_ports_in_use()
-    for _ in range(_DOMAINS):
-        domain = 1 + (offset + next(_counter)) % _DOMAINS
-        if not _domain_busy(domain, busy):
-            break
-    return domain
+    return next((d for d in candidates if not _domain_busy(d, busy)), candidates[0])
 
 
 def _domain_busy(domain: int, ports: set[int]) -> bool:

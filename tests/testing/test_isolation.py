@@ -75,3 +75,13 @@ def test_a_domain_a_dds_participant_uses_is_passed_over():
     finally:
         for udp in held:
             udp.close()
+
+
+def test_the_domain_the_shell_names_is_never_chosen(monkeypatch):
+    # a ROS user's shell exports the domain their own robot runs on: a test's launch must not
+    # join it, whichever domain the counter and the worker would have picked
+    from launchkit.testing._isolation import domain_id
+
+    monkeypatch.setenv("ROS_DOMAIN_ID", "7")
+    chosen = {domain_id() for _ in range(202)}
+    assert chosen and 7 not in chosen
