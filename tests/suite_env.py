@@ -47,6 +47,10 @@ DROPPED = frozenset(NAMES) | {"RMW_IMPLEMENTATION", "ROS_DOMAIN_ID"}
 #: it beside the sources (``PYTHONDONTWRITEBYTECODE``): without it each of the suite's thousands
 #: of processes compiles every launchkit module it imports again (a fifth of a node's start).
 BYTECODE = "bytecode"
+#: One BLAS thread per process: numpy's OpenBLAS otherwise starts a pool of threads in every
+#: process that imports it, which on a 2-core machine costs a third of the import's CPU (0.1 s)
+#: in each of the suite's thousands of processes, and none of them does linear algebra to speak of.
+BLAS_THREADS = {"OPENBLAS_NUM_THREADS": "1"}
 #: What :func:`private_defaults` sets.
 PRIVATE_DEFAULTS = (ROUTER, VIEWER_PORT, "ROS_DOMAIN_ID")
 
@@ -66,9 +70,9 @@ def run_dir() -> tuple[Path, bool]:
 def suite_environment(environ: Mapping[str, str], folder: Path) -> dict[str, str]:
     """``environ`` as the suite runs in it: without the shell's launchkit and ROS settings
     (:data:`DROPPED`), every home-derived folder in ``folder`` (:data:`FOLDERS`, made here),
-    no shared background router started by accident (tests that mean to start one say so), and
-    bytecode kept in ``folder`` (:data:`BYTECODE`) where the shell forbids writing it beside
-    the sources."""
+    no shared background router started by accident (tests that mean to start one say so), one
+    BLAS thread (:data:`BLAS_THREADS`), and bytecode kept in ``folder`` (:data:`BYTECODE`) where
+    the shell forbids writing it beside the sources."""
     environment = {name: value for name, value in environ.items() if name not in DROPPED}
     for name, sub in FOLDERS.items():
         path = folder / sub
@@ -81,6 +85,7 @@ def suite_environment(environ: Mapping[str, str], folder: Path) -> dict[str, str
         environment["PYTHONPYCACHEPREFIX"] = str(path)
     environment[RUN_DIR_ENV] = str(folder)
     environment[ROUTER_AUTOSTART] = "0"
+    environment.update(BLAS_THREADS)
     return environment
 
 

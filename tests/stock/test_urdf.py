@@ -5,10 +5,10 @@ from __future__ import annotations
 import io
 import math
 from pathlib import Path
+from typing import Any
 
 import numpy as np
 import pytest
-import yourdfpy
 
 from launchkit.rotations import matrix_to_quaternion, rotate, rpy_to_quaternion
 from launchkit.stock.urdf import Transform, UrdfError, parse_urdf
@@ -46,7 +46,11 @@ def _matrix(t: Transform) -> np.ndarray:
     return m
 
 
-def _reference(text: str, cfg: dict[str, float]) -> yourdfpy.URDF:
+def _reference(text: str, cfg: dict[str, float]) -> Any:
+    # imported here: yourdfpy brings trimesh and scipy (about a second), which every xdist
+    # worker would otherwise pay while collecting the suite
+    import yourdfpy
+
     urdf = yourdfpy.URDF.load(io.StringIO(text), load_meshes=False)
     urdf.update_cfg(cfg)
     return urdf
