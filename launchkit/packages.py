@@ -20,7 +20,6 @@ import os
 import sys
 from collections.abc import Mapping
 from dataclasses import KW_ONLY, dataclass, field
-from importlib.metadata import entry_points
 from pathlib import Path
 
 from launchkit.envvars import STANDINS
@@ -298,6 +297,11 @@ def _changed(folder: str) -> int:
 
 
 def _read_entry_points() -> dict[str, PythonPackage]:
+    # imported here, not with the module: every process on launchkit's rclpy loads this module
+    # (its import hook looks for interface packages on AMENT_PREFIX_PATH), and most never read
+    # an entry point; importlib.metadata brings the email package, 60 ms of a node's start
+    from importlib.metadata import entry_points
+
     found: dict[str, PythonPackage] = {}
     for ep in entry_points(group=ENTRY_POINT_GROUP):
         if ep.name in found:

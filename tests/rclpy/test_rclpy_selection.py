@@ -162,6 +162,17 @@ def test_the_face_loads_the_message_layer_only_when_a_message_package_is_importe
     assert json.loads(result.stdout) == [[], list(layer)]  # loaded by the first message import
 
 
+def test_a_module_the_platform_lacks_reads_no_distribution_metadata() -> None:
+    # subprocess tries msvcrt, missing on Linux: asking the finder of registered packages about
+    # it read every installed distribution's entry points (60 ms) in every node that started
+    probe = (
+        "import sys, subprocess, rclpy, rclpy.node\n"
+        "try:\n    import winreg\nexcept ImportError:\n    pass\n"
+        "print('importlib.metadata' in sys.modules)\n"
+    )
+    assert _with_the_face(probe).stdout == "False\n"
+
+
 def test_the_hooks_list_of_built_in_packages_is_the_stores() -> None:
     assert BUILTIN_PACKAGES == registry().builtin_packages()
 

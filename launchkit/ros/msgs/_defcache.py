@@ -17,7 +17,7 @@ from __future__ import annotations
 import json
 import os
 import tempfile
-from importlib import import_module, metadata
+from importlib import import_module
 from pathlib import Path
 from typing import Any
 
@@ -79,6 +79,8 @@ def rosbags_version() -> str:
         found = []
     if len(found) == 1:
         return found[0][len("rosbags-") : -len(_INFO)]
+    from importlib import metadata  # only here: importing it is most of its cost
+
     return metadata.version("rosbags")
 
 

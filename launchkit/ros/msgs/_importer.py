@@ -30,6 +30,11 @@ if TYPE_CHECKING:
     from launchkit.ros.msgs._registry import Registry
 
 _PREFIX = "launchkit.ros.msgs."
+#: Never message packages: the standard library's modules, and Jython's ``org`` (copy and pickle
+#: of Python 3.11 try it). The standard library tries modules of other platforms (subprocess
+#: tries msvcrt) in every process; asked about one, the last finder would read every installed
+#: distribution's entry points (75 ms of CPU) in every node that starts.
+_STANDARD_LIBRARY = frozenset(sys.stdlib_module_names) | {"org"}
 _looking = threading.local()
 
 
@@ -73,6 +78,8 @@ class InterfaceFinder(importlib.abc.MetaPathFinder, importlib.abc.Loader):
         # from names and folders alone: the message layer loads when a package is imported
         if pkg in BUILTIN_PACKAGES:
             return True
+        if pkg in _STANDARD_LIBRARY:
+            return False
         packages = interface_packages()
         if self.ament and packages.folder(pkg, registered=False) is not None:
             return True
