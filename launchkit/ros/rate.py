@@ -4,7 +4,7 @@ from __future__ import annotations
 
 from typing import TYPE_CHECKING
 
-from launchkit.ros.clock import Clock, Duration
+from launchkit.ros.clock import Clock, Time
 
 if TYPE_CHECKING:
     from launchkit.ros.context import Context
@@ -34,7 +34,10 @@ class Rate:
             raise RuntimeError("Rate was destroyed")
         now = self.clock.now().nanoseconds
         if self._next > now:
-            self.clock.sleep_for(Duration(nanoseconds=self._next - now), self.context)
+            # until the period's own instant: a sleep_for would read the clock again, and on a
+            # clock that moves meanwhile (sim time) end that much later
+            until = Time(nanoseconds=self._next, clock_type=self.clock.clock_type)
+            self.clock.sleep_until(until, self.context)
             self._next += self.period_ns
         else:
             self._next = now + self.period_ns

@@ -5,6 +5,7 @@ from __future__ import annotations
 
 import itertools
 import os
+import random
 import socket
 from collections.abc import Mapping
 from pathlib import Path
@@ -18,15 +19,49 @@ _WORKER_SPREAD = 50
 _counter = itertools.count()
 # DDS (RTPS) gives domain d the UDP ports 7400 + 250·d and the 249 after them
 _RTPS_BASE, _RTPS_GAIN = 7400, 250
+# free ports are picked from here up to the ephemeral range, when it leaves this much room
+_PICK_FROM, _PICK_ROOM = 20000, 2000
+# seeded by the system, never by a test (hypothesis seeds the random module: two workers would
+# pick the same ports)
+_PICKER = random.SystemRandom()
 # the LAUNCHKIT_* variables a launch never inherits from the test process
 _SHELL_SETTINGS = frozenset(NAMES) - {CACHE_DIR}
 
 
 def free_loopback_port() -> int:
-    """A TCP port on 127.0.0.1 that nothing listens on right now."""
+    """A TCP port on 127.0.0.1 that nothing listens on right now.
+
+    Picked below the kernel's range of ephemeral ports where there is room: outgoing
+    connections take their local ports from that range, so a port picked there (as binding port
+    0 picks) could be taken by some connection before the server meant to get it binds.
+    """
+    low = _ephemeral_ports()[0]
+    if low - _PICK_FROM >= _PICK_ROOM:
+        for _ in range(50):
+            port = _PICKER.randrange(_PICK_FROM, low)
+            if _bindable(port):
+                return port
     with socket.socket(socket.AF_INET, socket.SOCK_STREAM) as probe:
         probe.bind(("127.0.0.1", 0))
         return int(probe.getsockname()[1])
+
+
+def _bindable(port: int) -> bool:
+    with socket.socket(socket.AF_INET, socket.SOCK_STREAM) as probe:
+        try:
+            probe.bind(("127.0.0.1", port))
+        except OSError:
+            return False
+        return True
+
+
+def _ephemeral_ports() -> tuple[int, int]:
+    """The kernel's range of ephemeral ports (Linux's default where it cannot be read)."""
+    try:
+        low, high = Path("/proc/sys/net/ipv4/ip_local_port_range").read_text().split()
+        return int(low), int(high)
+    except (OSError, ValueError):
+        return 32768, 60999
 
 
 def without_shell_settings(environ: Mapping[str, str]) -> dict[str, str]:

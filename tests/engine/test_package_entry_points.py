@@ -35,8 +35,13 @@ def _install(folder: Path, dist: str, package: str) -> None:
 
 @pytest.fixture
 def site(tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> Path:
-    """A folder of installed distributions first on ``sys.path``."""
-    monkeypatch.syspath_prepend(str(tmp_path))
+    """A folder of installed distributions on ``sys.path``, with the standard library only.
+
+    The entry points are read again when a ``sys.path`` folder changes; the clone's own folders
+    change while the suite runs (another test builds a wheel beside the sources), so they are
+    left out here."""
+    standard = [entry for entry in sys.path if entry.startswith(sys.base_prefix)]
+    monkeypatch.setattr(sys, "path", [str(tmp_path), *standard])
     return tmp_path
 
 

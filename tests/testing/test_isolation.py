@@ -85,3 +85,16 @@ def test_the_domain_the_shell_names_is_never_chosen(monkeypatch):
     monkeypatch.setenv("ROS_DOMAIN_ID", "7")
     chosen = {domain_id() for _ in range(202)}
     assert chosen and 7 not in chosen
+
+
+def test_free_ports_are_picked_where_outgoing_connections_never_take_theirs():
+    # binding port 0 picks from the kernel's ephemeral range, which outgoing connections also
+    # take their local ports from: a connection took a viewer's port before rviz2 bound it
+    from launchkit.testing._isolation import _ephemeral_ports, free_loopback_port
+
+    low, _ = _ephemeral_ports()
+    if low < 22000:
+        pytest.skip(f"this machine's ephemeral ports start at {low}: no room below them")
+    ports = {free_loopback_port() for _ in range(20)}
+    assert all(20000 <= port < low for port in ports), ports
+    assert len(ports) > 1  # picked at random, not a fixed sequence every worker repeats
