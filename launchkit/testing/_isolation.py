@@ -91,11 +91,16 @@ def domain_id() -> int:
     offset = int(worker) * _WORKER_SPREAD if worker.isdigit() else 0
     offset += os.getpid() % _WORKER_SPREAD
     users = os.environ.get(ROS_DOMAIN_ENV, "0").strip()
-    start = offset + next(_counter)
-    candidates = [1 + (start + step) % _DOMAINS for step in range(_DOMAINS)]
-    candidates = [domain for domain in candidates if str(domain) != users]
     busy = _udp_ports_in_use()
-    return next((d for d in candidates if not _domain_busy(d, busy)), candidates[0])
+    tried: list[int] = []
+    for _ in range(_DOMAINS):
+        domain = 1 + (offset + next(_counter)) % _DOMAINS
+        if str(domain) == users:
+            continue
+        if not _domain_busy(domain, busy):
+            return domain
+        tried.append(domain)
+    return tried[0]  # every domain busy: the first one tried
 
 
 def _domain_busy(domain: int, ports: set[int]) -> bool:

@@ -98,3 +98,10 @@ def test_free_ports_are_picked_where_outgoing_connections_never_take_theirs():
     ports = {free_loopback_port() for _ in range(20)}
     assert all(20000 <= port < low for port in ports), ports
     assert len(ports) > 1  # picked at random, not a fixed sequence every worker repeats
+
+
+def test_consecutive_launches_get_different_domains():
+    from launchkit.testing._isolation import domain_id
+
+    first, second = domain_id(), domain_id()
+    assert first != second
