@@ -39,9 +39,11 @@ def site(tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> Path:
 
     The entry points are read again when a ``sys.path`` folder changes; the clone's own folders
     change while the suite runs (another test builds a wheel beside the sources), so they are
-    left out here."""
+    left out here, and loading an entry point's module writes no ``__pycache__`` into the
+    folder (which would change it)."""
     standard = [entry for entry in sys.path if entry.startswith(sys.base_prefix)]
     monkeypatch.setattr(sys, "path", [str(tmp_path), *standard])
+    monkeypatch.setattr(sys, "dont_write_bytecode", True)
     return tmp_path
 
 
