@@ -52,12 +52,15 @@ def test_the_timeout_scale_multiplies_every_deadline(monkeypatch):
     assert scaled(4) == 4.0
 
 
-def test_a_domain_a_dds_participant_uses_is_passed_over():
+def test_a_domain_a_dds_participant_uses_is_passed_over(monkeypatch):
     # another test run's real DDS nodes hold a domain's RTPS ports (7400 + 250·d and after):
     # hold every domain's but one, as such nodes would; the next launch must get that one
     import socket
 
     from launchkit.testing._isolation import domain_id
+
+    # the suite gives each worker a private domain of its own: it may be the free one
+    monkeypatch.setenv("ROS_DOMAIN_ID", "0")
 
     held = []
     try:
