@@ -164,7 +164,7 @@ def test_the_face_loads_the_message_layer_only_when_a_message_package_is_importe
 
 def test_a_module_the_platform_lacks_reads_no_distribution_metadata() -> None:
     # subprocess tries msvcrt, missing on Linux: asking the finder of registered packages about
-    # it read every installed distribution's entry points (60 ms) in every node that started
+    # it read every installed distribution's entry points (75 ms) in every node that started
     probe = (
         "import sys, subprocess, rclpy, rclpy.node\n"
         "try:\n    import winreg\nexcept ImportError:\n    pass\n"
