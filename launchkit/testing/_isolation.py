@@ -3,6 +3,7 @@ none of the shell's launchkit settings."""
 
 from __future__ import annotations
 
+import functools
 import itertools
 import os
 import random
@@ -35,7 +36,7 @@ def free_loopback_port() -> int:
     connections take their local ports from that range, so a port picked there (as binding port
     0 picks) could be taken by some connection before the server meant to get it binds.
     """
-    low = _ephemeral_ports()[0]
+    low = first_ephemeral_port()
     if low - _PICK_FROM >= _PICK_ROOM:
         for _ in range(50):
             port = _PICKER.randrange(_PICK_FROM, low)
@@ -55,13 +56,13 @@ def _bindable(port: int) -> bool:
         return True
 
 
-def _ephemeral_ports() -> tuple[int, int]:
-    """The kernel's range of ephemeral ports (Linux's default where it cannot be read)."""
+@functools.cache
+def first_ephemeral_port() -> int:
+    """The lowest of the kernel's ephemeral ports (Linux's default where it cannot be read)."""
     try:
-        low, high = Path("/proc/sys/net/ipv4/ip_local_port_range").read_text().split()
-        return int(low), int(high)
-    except (OSError, ValueError):
-        return 32768, 60999
+        return int(Path("/proc/sys/net/ipv4/ip_local_port_range").read_text().split()[0])
+    except (OSError, ValueError, IndexError):
+        return 32768
 
 
 def without_shell_settings(environ: Mapping[str, str]) -> dict[str, str]:

@@ -93,9 +93,9 @@ def test_the_domain_the_shell_names_is_never_chosen(monkeypatch):
 def test_free_ports_are_picked_where_outgoing_connections_never_take_theirs():
     # binding port 0 picks from the kernel's ephemeral range, which outgoing connections also
     # take their local ports from: a connection took a viewer's port before rviz2 bound it
-    from launchkit.testing._isolation import _ephemeral_ports, free_loopback_port
+    from launchkit.testing._isolation import first_ephemeral_port, free_loopback_port
 
-    low, _ = _ephemeral_ports()
+    low = first_ephemeral_port()
     if low < 22000:
         pytest.skip(f"this machine's ephemeral ports start at {low}: no room below them")
     ports = {free_loopback_port() for _ in range(20)}

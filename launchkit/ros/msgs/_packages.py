@@ -65,7 +65,9 @@ class InterfacePackages:
     def index(self) -> Any:
         """The package index (made on first use, from the environment as it is then)."""
         if self._index is None:
-            from launchkit.packages import PackageIndex  # its first lookup reads entry points
+            # imported when first asked: a process that imports only the standard library
+            # never asks, and skips the 25 ms
+            from launchkit.packages import PackageIndex
 
             self._index = PackageIndex()
         return self._index
