@@ -16,6 +16,7 @@ import subprocess
 import sys
 import threading
 import time
+from collections.abc import Callable
 from pathlib import Path
 
 import pytest
@@ -55,6 +56,10 @@ def environment(flavour: str, router: str, domain: int) -> dict[str, str]:
         env["AMENT_PREFIX_PATH"] = sys.prefix
         env.update(face.environment(env))
     return env
+
+
+class DidNotEnd(AssertionError):
+    """A node file's run did not end within :data:`PATIENCE`."""
 
 
 class NodeRun:
@@ -116,16 +121,9 @@ class NodeRun:
         try:
             self.proc.wait(PATIENCE)
         except subprocess.TimeoutExpired:
-            self.proc.kill()
-            self.proc.wait()
-            raise AssertionError(
-                f"{self.proc.args} did not end: {self.stdout + self.stderr}"
-            ) from None
-        for reader in self._readers:
-            reader.join(10)
-        for stream in (self.proc.stdout, self.proc.stderr):
-            if stream is not None:
-                stream.close()
+            self.kill()
+            raise DidNotEnd(f"{self.proc.args} did not end: {self.stdout + self.stderr}") from None
+        self._close_streams()
         return (
             self.proc.returncode,
             normalize("".join(self.stdout)),
@@ -137,6 +135,16 @@ class NodeRun:
         if self.proc.poll() is None:
             self.proc.kill()
             self.proc.wait()
+        self._close_streams()
+
+    def _close_streams(self) -> None:
+        # closed here, not by the garbage collector in whichever test runs next (where an
+        # unclosed file's ResourceWarning fails that test)
+        for reader in self._readers:
+            reader.join(10)
+        for stream in (self.proc.stdout, self.proc.stderr):
+            if stream is not None:
+                stream.close()
 
 
 def normalize(text: str) -> str:
@@ -164,4 +172,33 @@ class Runs:
             run.kill()
 
 
-__all__ = ["LAUNCHKIT", "REAL", "NodeRun", "Runs", "normalize", "real_rclpy", "signal"]
+def scenario_output(
+    make: Callable[[str], Runs], flavour: str, scenario: Callable[[Runs], str]
+) -> str:
+    """What ``scenario`` prints on ``flavour`` (``make`` is the ``runs`` fixture).
+
+    The real rclpy gets a second try, on a fresh domain, when one of its processes hangs: under
+    load its action client over Fast DDS now and then never receives a result the server has
+    sent (the server logs the goal's success; the client waits in
+    ``spin_until_future_complete`` for good). That race is upstream's, not what these tests
+    measure. launchkit's runs get no second try.
+    """
+    try:
+        return scenario(make(flavour))
+    except DidNotEnd:
+        if flavour != REAL:
+            raise
+    return scenario(make(flavour))
+
+
+__all__ = [
+    "LAUNCHKIT",
+    "REAL",
+    "DidNotEnd",
+    "NodeRun",
+    "Runs",
+    "normalize",
+    "real_rclpy",
+    "scenario_output",
+    "signal",
+]

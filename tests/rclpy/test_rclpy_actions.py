@@ -14,7 +14,7 @@ from typing import Any
 
 import pytest
 import scenarios
-from rclpy_runs import LAUNCHKIT, PATIENCE, REAL, Runs, real_rclpy
+from rclpy_runs import LAUNCHKIT, PATIENCE, REAL, Runs, real_rclpy, scenario_output
 
 from launchkit.ros.action import ActionClient, ActionServer, GoalResponse
 from launchkit.ros.action.goal_state import GoalEvent, GoalStatus, transition
@@ -76,12 +76,12 @@ server status 0
 
 @pytest.mark.parametrize("flavour", FLAVOURS)
 def test_goals_with_feedback_cancel_and_abort(runs: Make, flavour: str) -> None:
-    assert scenarios.actions(runs(flavour)) == ACTIONS
+    assert scenario_output(runs, flavour, scenarios.actions) == ACTIONS
 
 
 @pytest.mark.parametrize("flavour", FLAVOURS)
 def test_two_clients_follow_their_own_goals(runs: Make, flavour: str) -> None:
-    assert scenarios.two_action_clients(runs(flavour)) == TWO_CLIENTS
+    assert scenario_output(runs, flavour, scenarios.two_action_clients) == TWO_CLIENTS
 
 
 # launchkit's side, in this process ----------------------------------------------------------
