@@ -10,7 +10,8 @@ program on the real rclpy) is named as outside the lockstep and no longer waited
 Without ``rtf`` the time advances as fast as the slowest participant allows; with it, no faster
 than ``rtf`` simulated seconds per wall second. ``until`` ends the launch (``on_until``) at that
 simulated time. ``paused`` holds the time until a test asks for more (:data:`.report.CONTROL_KEY`:
-``{"run_until_ns": N}``); the authority says where it is on :data:`.report.STATUS_KEY`.
+``{"run_until_ns": N}``) and says where it is on :data:`.report.STATUS_KEY` (only then: the
+test plugin is its one reader, and a status at every instant costs a put each).
 """
 
 from __future__ import annotations
@@ -184,7 +185,7 @@ class TimeAuthority:
                 reason = self._waiting_for()
                 lagging = self._state.to_wake(self._time_ns)
             quiet = reason is None
-            if (self._time_ns, quiet) != last_status:
+            if self.options.paused and (self._time_ns, quiet) != last_status:
                 last_status = (self._time_ns, quiet)
                 self._publish_status(quiet)
             if not quiet:
