@@ -14,7 +14,6 @@ import array
 import sys
 from typing import Any
 
-import numpy as np
 import yaml
 
 from launchkit.ros.message_data import fields_of
@@ -40,17 +39,18 @@ def rosidl_value(value: Any, desc: Any) -> Any:
         return value
     element, _ = detail
     base = element[1][0] if element[0] == _BASE else None
-    code = TYPE_CODES.get(IDL_NAMES.get(base or "", ""))
-    if code is not None and kind == _SEQUENCE:
-        return array.array(code, [_scalar(v, base or "") for v in value])
-    if code is not None:
-        return np.array([_scalar(v, base or "") for v in value], dtype=np.dtype(code))
+    special = IDL_NAMES.get(base or "", "")
+    if special in TYPE_CODES and kind == _SEQUENCE:
+        return array.array(TYPE_CODES[special], [_scalar(v, base or "") for v in value])
+    if special in TYPE_CODES:
+        from launchkit.ros.msgs import _fixed_arrays  # numpy: only for a fixed-size array
+
+        return _fixed_arrays.converter(special)([_scalar(v, base or "") for v in value])
     return [rosidl_value(v, element) for v in value]
 
 
 def _scalar(value: Any, base: str) -> Any:
-    if isinstance(value, np.generic):
-        value = value.item()
+    value = _plain(value)
     if base == "byte":
         return value if isinstance(value, bytes) else bytes([value])
     if base == "bool":
@@ -160,7 +160,9 @@ def _data(value: Any, truncate: int | None, no_arr: bool, no_str: bool) -> Any:
 
 
 def _plain(value: Any) -> Any:
-    return value.item() if isinstance(value, np.generic) else value
+    """A numpy scalar (an element of a fixed-size array) as the Python number it holds."""
+    numpy = sys.modules.get("numpy")  # a process that never imported numpy holds no numpy value
+    return value.item() if numpy is not None and isinstance(value, numpy.generic) else value
 
 
 def _array_summary(length: int, desc: Any) -> str:

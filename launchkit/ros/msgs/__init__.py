@@ -39,7 +39,7 @@ if TYPE_CHECKING:
     from launchkit.ros.msgs._registry import MessageTypeError
 
 # Names are imported on first use (PEP 562): the import hook is installed when a process starts
-# (the rclpy face's sitecustomize), and must not load numpy, rosbags and the classes then.
+# (the rclpy face's sitecustomize), and must not load rosbags and the classes then.
 _LAZY = {
     "codec": "._api",
     "deserialize": "._api",

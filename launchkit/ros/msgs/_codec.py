@@ -25,7 +25,6 @@ import threading
 from collections.abc import Callable
 from typing import Any
 
-import numpy
 from rosbags.serde import SerdeError
 
 from launchkit.ros.msgs import _spec as s
@@ -92,8 +91,10 @@ class CodecFunctions:
         if found is None:
             with self._lock:
                 spec = self._spec_of(type_name)
-                source = EncoderWriter(spec).source()
-                found = _compile(source, "encode", self._namespace(spec, _NATIVE, True))
+                writer = EncoderWriter(spec)
+                source = writer.source()
+                namespace = self._namespace(spec, _NATIVE, True, writer.fixed_arrays)
+                found = _compile(source, "encode", namespace)
                 self._encoders[type_name] = found
         return found
 
@@ -104,25 +105,30 @@ class CodecFunctions:
         if found is None:
             with self._lock:
                 spec = self._spec_of(type_name)
-                source = DecoderWriter(spec, order).source()
-                namespace = self._namespace(spec, order, False)
+                writer = DecoderWriter(spec, order)
+                source = writer.source()
+                namespace = self._namespace(spec, order, False, writer.fixed_arrays)
                 namespace["CLS"] = self._class_of(type_name)
                 found = _compile(source, "decode", namespace)
                 self._decoders[key] = found
         return found
 
-    def _namespace(self, spec: s.MessageSpec, order: str, encode: bool) -> dict[str, Any]:
+    def _namespace(
+        self, spec: s.MessageSpec, order: str, encode: bool, fixed_arrays: bool
+    ) -> dict[str, Any]:
         namespace: dict[str, Any] = {
             "array": array.array,
-            "numpy": numpy,
             "struct": struct,
             "CHECK": self._check_fields,
             "U32": struct.Struct(order + "I"),
             "ZERO": bytes(8),
             "SWAP": order != _NATIVE,
-            "bytes_of": _bytes_of,
-            "fixed_array": _fixed_array,
         }
+        if fixed_arrays:  # numpy, for the types that have them only (see _fixed_arrays)
+            from launchkit.ros.msgs import _fixed_arrays
+
+            namespace["bytes_of"] = _fixed_arrays.bytes_of
+            namespace["fixed_array"] = _fixed_arrays.from_wire
         for ref in s.referenced_types(spec):
             key = function_name(ref)
             # nested types first (a message never contains itself, at any depth)
@@ -136,15 +142,3 @@ class CodecFunctions:
 def _compile(source: str, name: str, namespace: dict[str, Any]) -> Any:
     exec(compile(source, f"<launchkit CDR {name}>", "exec"), namespace)
     return namespace[name]
-
-
-def _bytes_of(value: Any, dtype: Any, size: int) -> Any:
-    """The bytes of a fixed-size numeric array of ``size`` elements (a buffer, not a copy)."""
-    data = numpy.ascontiguousarray(value, dtype=dtype)
-    if data.shape != (size,):
-        raise ValueError(f"a fixed-size array of {size} values, got shape {data.shape}")
-    return data.data
-
-
-def _fixed_array(view: memoryview, dtype: Any, size: int, pos: int, native: Any) -> Any:
-    return numpy.frombuffer(view, dtype=dtype, count=size, offset=pos).astype(native)

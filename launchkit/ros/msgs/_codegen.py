@@ -12,8 +12,6 @@ from __future__ import annotations
 import struct
 import sys
 
-import numpy
-
 from launchkit.ros.msgs import _spec as s
 from launchkit.ros.msgs import definition as d
 
@@ -32,12 +30,14 @@ class _Writer:
     (``known == 1``: nothing known) so that padding is computed here where it can be.
 
     Fixed-size fields gather in a group (``group_format``, one ``struct`` call) until
-    :meth:`flush`; ``DUMMY`` is what stands for rosidl's one-byte member of an empty type."""
+    :meth:`flush`; ``DUMMY`` is what stands for rosidl's one-byte member of an empty type.
+    ``fixed_arrays`` says whether the code calls ``bytes_of`` or ``fixed_array`` (numpy)."""
 
     DUMMY = ""
 
     def __init__(self, spec: s.MessageSpec) -> None:
         self.spec = spec
+        self.fixed_arrays = False
         self.lines: list[str] = []
         self.known, self.residue = 1, 0
         self.counter = 0
@@ -156,11 +156,12 @@ class EncoderWriter(_Writer):
             self.lines.append(f"    {count} = len({value})")
             self.lines.append(f"    out += U32.pack({count})")
         if special is not None:
-            size = numpy.dtype(s.DTYPE_NAMES[special]).itemsize
+            size = s.item_size(special)
             if isinstance(idl, d.Array):
                 self.align(size)
                 self.flush()
-                dtype = NATIVE + numpy.dtype(s.DTYPE_NAMES[special]).str[1:]
+                dtype = NATIVE + s.dtype_code(special)
+                self.fixed_arrays = True
                 self.lines.append(f"    out += bytes_of({value}, {dtype!r}, {idl.size})")
                 self.advance(size * idl.size)
                 return
@@ -271,13 +272,12 @@ class DecoderWriter(_Writer):
             self.lines.append("    pos += 4")
             self.unknown()
         if special is not None:
-            dtype = numpy.dtype(s.DTYPE_NAMES[special])
-            size = dtype.itemsize
+            size = s.item_size(special)
             if isinstance(idl, d.Array):
                 self.align(size)
                 self.flush()
-                wire = self.order + dtype.str[1:]
-                native = NATIVE + dtype.str[1:]
+                wire, native = self.order + s.dtype_code(special), NATIVE + s.dtype_code(special)
+                self.fixed_arrays = True
                 self.lines.append(
                     f"    {target} = fixed_array(view, {wire!r}, {count}, pos, {native!r})"
                 )

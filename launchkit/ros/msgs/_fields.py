@@ -4,6 +4,9 @@ The checks and their messages are rosidl_generator_py's (Jazzy): they run only w
 was made with ``check_fields=True`` or ``ROS_PYTHON_CHECK_FIELDS=1`` is set, as in rclpy, and
 fail with ``AssertionError`` and rosidl's words. Whatever the checks, a numeric sequence is stored
 as ``array.array`` and a fixed-size numeric array as ``numpy.ndarray``, as rosidl's setters do.
+
+The fixed-size arrays' parts come from :mod:`._fixed_arrays`, imported when the first value of
+such a field is made or stored: that module is what imports numpy (it says why not sooner).
 """
 
 from __future__ import annotations
@@ -14,8 +17,6 @@ from collections import UserList, UserString
 from collections.abc import Callable, Sequence, Set
 from operator import attrgetter
 from typing import Any
-
-import numpy
 
 from launchkit.ros.msgs import _spec as s
 from launchkit.ros.msgs import definition as d
@@ -32,13 +33,14 @@ def field_property(name: str, idl: d.AbstractType, class_of: ClassOf) -> propert
     slot = "_" + name
     check = _checker(name, idl, class_of)
     special = s.special_typename(idl)
-    store: Callable[[Any], Any] | None = None
+    keep_as_is: Callable[[Any], bool] | None = None  # numbers: rosidl's own containers
     if special is not None and isinstance(idl, d.Array):
-        store = _numpy_store(name, special, idl.size)
+        keep_as_is = _fixed_array_part("kept_as_is", name, special, idl.size)
+        convert = _fixed_array_part("converter", special)
     elif special is not None:
-        store = _array_store(name, special, idl)
+        keep_as_is, convert = _array_store(name, special, idl), _sequence_converter(special)
 
-    if store is None:
+    if keep_as_is is None:
 
         def set_value(self: Any, value: Any) -> None:
             if self._check_fields:
@@ -46,11 +48,11 @@ def field_property(name: str, idl: d.AbstractType, class_of: ClassOf) -> propert
             setattr(self, slot, value)
 
     else:
-        keep_as_is, convert = store, _converter(special, idl)
+        kept = keep_as_is
 
         def set_value(self: Any, value: Any) -> None:
             if self._check_fields:
-                if keep_as_is(value):
+                if kept(value):
                     setattr(self, slot, value)
                     return
                 check(value)
@@ -59,31 +61,25 @@ def field_property(name: str, idl: d.AbstractType, class_of: ClassOf) -> propert
     return property(attrgetter(slot), set_value, doc=f"Message field '{name}'.")
 
 
-def _converter(special: str | None, idl: d.AbstractType) -> Callable[[Any], Any]:
-    assert special is not None
-    if isinstance(idl, d.Array):
-        dtype = numpy.dtype(s.DTYPE_NAMES[special])
-        return lambda value: numpy.array(value, dtype=dtype)
+def _fixed_array_part(maker: str, *args: Any) -> Callable[..., Any]:
+    """``_fixed_arrays.<maker>(*args)``, made when first called. Types with a fixed-size array
+    are made that never hold a value (every service's ``Event`` type has a ``uint8[16]``), and
+    importing numpy is what :mod:`._fixed_arrays` costs."""
+    made: list[Callable[..., Any]] = []
+
+    def call(*values: Any) -> Any:
+        if not made:
+            from launchkit.ros.msgs import _fixed_arrays
+
+            made.append(getattr(_fixed_arrays, maker)(*args))
+        return made[0](*values)
+
+    return call
+
+
+def _sequence_converter(special: str) -> Callable[[Any], Any]:
     code = s.TYPE_CODES[special]
     return lambda value: array.array(code, value)
-
-
-def _numpy_store(name: str, special: str, size: int) -> Callable[[Any], bool]:
-    """With checks on: True for an ndarray of the right dtype and size (kept as it is)."""
-    dtype = numpy.dtype(s.DTYPE_NAMES[special])
-
-    def keep(value: Any) -> bool:
-        if not isinstance(value, numpy.ndarray):
-            return False
-        if value.dtype != dtype:
-            raise AssertionError(
-                f"The '{name}' numpy.ndarray() must have the dtype of 'numpy.{dtype.name}'"
-            )
-        if value.size != size:
-            raise AssertionError(f"The '{name}' numpy.ndarray() must have a size of {size}")
-        return True
-
-    return keep
 
 
 def _array_store(name: str, special: str, idl: d.AbstractType) -> Callable[[Any], bool]:
@@ -250,8 +246,7 @@ def default_factory(field: s.Field, idl: d.AbstractType, class_of: ClassOf) -> C
         special = s.special_typename(idl)
         size = idl.size
         if special is not None:
-            dtype = numpy.dtype(s.DTYPE_NAMES[special])
-            return lambda: numpy.zeros(size, dtype=dtype)
+            return _fixed_array_part("zeros", special, size)
         element = default_factory(s.Field(field.name, ("?", None)), idl.value_type, class_of)
         return lambda: [element() for _ in range(size)]
     if isinstance(idl, d.AbstractSequence):
@@ -276,8 +271,7 @@ def default_value_factory(field: s.Field, idl: d.AbstractType) -> Callable[[], A
     values = tuple(python_value(idl.value_type, v) for v in field.default)
     special = s.special_typename(idl)
     if special is not None and isinstance(idl, d.Array):
-        dtype = numpy.dtype(s.DTYPE_NAMES[special])
-        return lambda: numpy.array(values, dtype=dtype)
+        return _fixed_array_part("of_values", special, values)
     if special is not None:
         code = s.TYPE_CODES[special]
         return lambda: array.array(code, values)

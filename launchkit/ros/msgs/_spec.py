@@ -12,6 +12,7 @@ rosidl's classes, hashes and bytes all see a ``uint8``.
 
 from __future__ import annotations
 
+import struct
 from collections.abc import Callable
 from typing import Any, NamedTuple
 
@@ -48,6 +49,17 @@ DTYPE_NAMES = {
     "double": "float64",
     **{name: name for name in d.INTEGER_TYPES},
 }
+
+
+def item_size(special: str) -> int:
+    """Bytes per element of a numeric array or sequence of IDL type ``special``."""
+    return struct.calcsize("<" + TYPE_CODES[special])
+
+
+def dtype_code(special: str) -> str:
+    """numpy's dtype of ``special`` without its byte order: ``"f8"``, ``"u1"``, ``"i4"``."""
+    kind = "f" if special in ("float", "double") else "u" if special.startswith("u") else "i"
+    return f"{kind}{item_size(special)}"
 
 
 class Constant(NamedTuple):

@@ -7,11 +7,13 @@ rclpy's do: no conversion element by element), fixed-size arrays as lists.
 from __future__ import annotations
 
 import array
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 from launchkit.ros.msgs import get_message, get_service
-from launchkit.stock.gazebo_ros.sim.diff_drive import Odometry
-from launchkit.stock.gazebo_ros.sim.sensors import CameraConfig, LidarConfig
+
+if TYPE_CHECKING:  # the simulation core (numpy) is not for spawn_entity, which uses this too
+    from launchkit.stock.gazebo_ros.sim.diff_drive import Odometry
+    from launchkit.stock.gazebo_ros.sim.sensors import CameraConfig, LidarConfig
 
 
 def message_class(package: str, name: str) -> Any:
