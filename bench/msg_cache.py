@@ -36,6 +36,9 @@ import time
 from collections.abc import Callable
 from pathlib import Path
 
+from launchkit.ros.router import start_router
+from launchkit.testing._isolation import free_loopback_port, router_endpoint
+
 PY = sys.executable
 USE = (
     "from launchkit.ros.msgs import deserialize, get_message, serialize\n"
@@ -72,9 +75,6 @@ def main() -> None:
     parser.add_argument("--runs", type=int, default=9, help="interleaved rounds")
     parser.add_argument("--before", type=Path, help="a folder with an older launchkit package")
     args = parser.parse_args()
-    from launchkit.ros.router import start_router
-    from launchkit.testing._isolation import free_loopback_port, router_endpoint
-
     router = start_router(router_endpoint(free_loopback_port()))
     with tempfile.TemporaryDirectory(prefix="lk-bench-cache-") as tmp:
         warm = {**ENV, "LAUNCHKIT_CACHE_DIR": str(Path(tmp) / "warm")}

@@ -18,7 +18,7 @@ from launchkit.ros.msgs import _spec as s
 
 
 def _dtype(special: str) -> numpy.dtype[Any]:
-    return numpy.dtype(s.DTYPE_NAMES[special])
+    return numpy.dtype(s.dtype_code(special))  # native byte order: "f8" is float64
 
 
 def converter(special: str) -> Callable[[Any], Any]:

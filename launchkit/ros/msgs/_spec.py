@@ -31,7 +31,7 @@ IDL_NAMES = {
 }
 
 #: IDL types held in ``array.array`` (sequences) and ``numpy.ndarray`` (fixed arrays), with
-#: their type codes and dtypes: rosidl_generator_py's SPECIAL_NESTED_BASIC_TYPES.
+#: their type codes (dtypes: :func:`dtype_code`): rosidl_generator_py's SPECIAL_NESTED_BASIC_TYPES.
 TYPE_CODES = {
     "float": "f",
     "double": "d",
@@ -43,11 +43,6 @@ TYPE_CODES = {
     "uint32": "I",
     "int64": "q",
     "uint64": "Q",
-}
-DTYPE_NAMES = {
-    "float": "float32",
-    "double": "float64",
-    **{name: name for name in d.INTEGER_TYPES},
 }
 
 
